@@ -1,0 +1,288 @@
+#include "semo/frontend/robot_catalog.hpp"
+
+#include <console_bridge/console.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <stdexcept>
+
+#include "xml_support.hpp"
+
+namespace semo {
+
+namespace {
+
+using tinyxml2::XMLElement;
+
+// Collects urdfdom's console_bridge messages while a file is parsed, instead of printing them.
+class CapturedLog : public console_bridge::OutputHandler {
+ public:
+  CapturedLog() { console_bridge::useOutputHandler(this); }
+  ~CapturedLog() override { console_bridge::restorePreviousOutputHandler(); }
+  CapturedLog(const CapturedLog&) = delete;
+  CapturedLog& operator=(const CapturedLog&) = delete;
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR) errors.push_back(text);
+  }
+  std::vector<std::string> errors;
+};
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+const char* capabilityOfSensorType(const std::string& type) {
+  static const std::pair<const char*, const char*> table[] = {
+      {"camera", "Camera"}, {"depth", "Camera"}, {"multicamera", "Camera"}, {"wideanglecamera", "Camera"},
+      {"ray", "LaserDistanceSensor"}, {"gpu_ray", "LaserDistanceSensor"}, {"lidar", "LaserDistanceSensor"},
+      {"gpu_lidar", "LaserDistanceSensor"}, {"sonar", "ProximitySensor"}, {"range", "ProximitySensor"},
+      {"imu", "Imu"}, {"contact", "ContactSensor"}, {"gps", "Gps"}, {"navsat", "Gps"},
+      {"magnetometer", "Magnetometer"}};
+  for (const auto& [t, cap] : table) {
+    if (type == t) return cap;
+  }
+  return nullptr;
+}
+
+std::vector<const char*> capabilitiesOfLinkName(std::string name) {
+  name = lower(name);
+  if (name.size() > 5 && name.compare(name.size() - 5, 5, "_link") == 0) name.resize(name.size() - 5);
+  static const std::pair<const char*, const char*> table[] = {
+      {"camera", "Camera"}, {"lidar", "LaserDistanceSensor"}, {"laser", "LaserDistanceSensor"},
+      {"scan", "LaserDistanceSensor"}, {"lds", "LaserDistanceSensor"}, {"sonar", "ProximitySensor"},
+      {"ultrasonic", "ProximitySensor"}, {"proximity", "ProximitySensor"}, {"distance", "ProximitySensor"},
+      {"light", "LightSensor"}, {"color", "ColorSensor"}, {"colour", "ColorSensor"}, {"imu", "Imu"},
+      {"bumper", "Bumper"}, {"cliff", "CliffSensor"}, {"gps", "Gps"}, {"led", "Led"}, {"gripper", "Gripper"}};
+  std::vector<const char*> out;
+  for (const auto& [word, cap] : table) {
+    if (name.find(word) != std::string::npos) out.push_back(cap);
+  }
+  return out;
+}
+
+void addCapability(RobotType& type, const std::string& name, const std::string& source) {
+  for (const Capability& c : type.capabilities) {
+    if (c.name == name) return;  // the first source found is kept
+  }
+  type.capabilities.push_back({name, source});
+}
+
+// urdfdom names the culprit in brackets or quotes ("joint [x]", "link 'y'"): find that element.
+const XMLElement* culprit(const XMLElement* robot, const std::string& message) {
+  std::vector<std::string> names;
+  for (char open : {'[', '\''}) {
+    char close = open == '[' ? ']' : '\'';
+    for (std::size_t b = message.find(open); b != std::string::npos; b = message.find(open, b + 1)) {
+      std::size_t e = message.find(close, b + 1);
+      if (e == std::string::npos) break;
+      names.push_back(message.substr(b + 1, e - b - 1));
+      b = e;
+    }
+  }
+  for (const std::string& n : names) {
+    for (const XMLElement* e = robot->FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {
+      if (const char* attr = e->Attribute("name"); attr != nullptr && n == attr) return e;
+    }
+  }
+  return robot;
+}
+
+void deriveFromSensors(const XMLElement* robot, RobotType& type) {
+  auto visit = [&](const XMLElement* sensor) {
+    std::string name = sensor->Attribute("name") ? sensor->Attribute("name") : "?";
+    if (const char* t = sensor->Attribute("type")) {
+      if (const char* cap = capabilityOfSensorType(lower(t))) addCapability(type, cap, "sensor '" + name + "' (" + t + ")");
+      return;
+    }
+    if (sensor->FirstChildElement("camera")) addCapability(type, "Camera", "sensor '" + name + "' (camera)");
+    if (sensor->FirstChildElement("ray")) addCapability(type, "LaserDistanceSensor", "sensor '" + name + "' (ray)");
+  };
+  for (const XMLElement* e = robot->FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {
+    std::string_view tag = e->Name();
+    if (tag == "sensor") visit(e);
+    if (tag == "gazebo") {
+      for (const XMLElement* s = e->FirstChildElement("sensor"); s != nullptr; s = s->NextSiblingElement("sensor")) visit(s);
+    }
+  }
+}
+
+double cylinderRadius(const urdf::Link& link) {
+  auto radiusOf = [](const urdf::GeometrySharedPtr& g) -> double {
+    if (g && g->type == urdf::Geometry::CYLINDER) return std::static_pointer_cast<urdf::Cylinder>(g)->radius;
+    if (g && g->type == urdf::Geometry::SPHERE) return std::static_pointer_cast<urdf::Sphere>(g)->radius;
+    return 0;
+  };
+  if (link.collision) {
+    if (double r = radiusOf(link.collision->geometry); r > 0) return r;
+  }
+  if (link.visual) return radiusOf(link.visual->geometry);
+  return 0;
+}
+
+void deriveFromModel(const urdf::ModelInterface& model, RobotType& type) {
+  for (const auto& [name, link] : model.links_) {
+    type.links.push_back(name);
+    for (const char* cap : capabilitiesOfLinkName(name)) addCapability(type, cap, "link '" + name + "'");
+    if (link->inertial) type.massKg += link->inertial->mass;
+  }
+  std::sort(type.links.begin(), type.links.end());
+  std::vector<const urdf::Joint*> wheels;
+  for (const auto& [name, joint] : model.joints_) {
+    std::string n = lower(name);
+    if (joint->type == urdf::Joint::FIXED) continue;
+    if (n.find("wheel") != std::string::npos) wheels.push_back(joint.get());
+    bool revolute = joint->type == urdf::Joint::REVOLUTE;
+    if (revolute && (n.find("leg") != std::string::npos || n.find("hip") != std::string::npos ||
+                     n.find("knee") != std::string::npos)) {
+      addCapability(type, "Legs", "joint '" + name + "'");
+    }
+  }
+  if (wheels.empty()) return;
+  addCapability(type, "Wheels", "joint '" + wheels.front()->name + "'");
+  if (wheels.size() >= 2) addCapability(type, "DifferentialDrive", std::to_string(wheels.size()) + " wheel joints");
+  WheelGeometry g;
+  g.wheelCount = static_cast<int>(wheels.size());
+  double minY = 0, maxY = 0;
+  bool first = true;
+  for (const urdf::Joint* j : wheels) {
+    double y = j->parent_to_joint_origin_transform.position.y;
+    minY = first ? y : std::min(minY, y);
+    maxY = first ? y : std::max(maxY, y);
+    first = false;
+    if (auto child = model.getLink(j->child_link_name)) g.radius = std::max(g.radius, cylinderRadius(*child));
+  }
+  g.separation = maxY - minY;
+  type.wheels = g;
+}
+
+}  // namespace
+
+bool RobotType::has(const std::string& capability) const {
+  return std::any_of(capabilities.begin(), capabilities.end(), [&](const Capability& c) { return c.name == capability; });
+}
+
+const RobotType* RobotCatalog::find(const std::string& name) const {
+  for (const RobotType& t : types_) {
+    if (t.name == name) return &t;
+  }
+  return nullptr;
+}
+
+std::vector<std::string> RobotCatalog::typeNames() const {
+  std::vector<std::string> out;
+  for (const RobotType& t : types_) out.push_back(t.name);
+  return out;
+}
+
+std::vector<std::string> RobotCatalog::capabilityNames() const {
+  std::set<std::string> names;
+  for (const RobotType& t : types_) {
+    for (const Capability& c : t.capabilities) names.insert(c.name);
+  }
+  return {names.begin(), names.end()};
+}
+
+std::optional<RobotType> loadRobotType(SourceManager& sources, const std::string& path, SourceRange requestedAt,
+                                       DiagnosticEngine& diags) {
+  std::string why;
+  FileId file = sources.load(path, why);
+  if (file == kNoFile) {
+    diags.error(requestedAt, "cannot read robot description: " + why);
+    return std::nullopt;
+  }
+  xml::Reader xml(sources, file, diags);
+  tinyxml2::XMLDocument doc;
+  if (!xml.parse(doc)) return std::nullopt;
+  const XMLElement* robot = doc.RootElement();
+  if (robot == nullptr || std::string_view(robot->Name()) != "robot") {
+    if (robot == nullptr) {
+      diags.error({{file, 1, 1}, 1}, "not a URDF file: no root element");
+    } else {
+      xml.error(robot, std::string("not a URDF file: the root element must be <robot>, not <") + robot->Name() + ">");
+    }
+    return std::nullopt;
+  }
+
+  urdf::ModelInterfaceSharedPtr model;
+  std::vector<std::string> errors;
+  {
+    CapturedLog log;
+    try {
+      model = urdf::parseURDF(sources.text(file));
+    } catch (const std::exception& e) {
+      log.errors.push_back(e.what());
+    }
+    errors = std::move(log.errors);
+  }
+  if (!model) {
+    if (errors.empty()) errors.push_back("urdfdom rejected the robot description");
+    for (const std::string& message : errors) xml.error(culprit(robot, message), "invalid URDF: " + message);
+    return std::nullopt;
+  }
+
+  RobotType type;
+  type.name = model->getName();
+  type.urdfPath = path;
+  deriveFromSensors(robot, type);
+  deriveFromModel(*model, type);
+  return type;
+}
+
+RobotCatalog buildCatalog(const strategy::Strategy& strategy, const std::optional<std::string>& robotsDir,
+                          SourceManager& sources, DiagnosticEngine& diags) {
+  namespace fs = std::filesystem;
+  RobotCatalog catalog;
+  auto addType = [&](RobotType type, SourceRange at) {
+    if (const RobotType* existing = catalog.find(type.name)) {
+      Diagnostic& d = diags.error(at, "robot type '" + type.name + "' is described twice (" + existing->urdfPath + " and " +
+                                          type.urdfPath + ")");
+      if (existing->declaredAt.begin.valid()) DiagnosticEngine::note(d, existing->declaredAt, "first described here");
+      return;
+    }
+    type.declaredAt = at;
+    catalog.add(std::move(type));
+  };
+
+  if (strategy.robots.empty() && robotsDir) {
+    std::error_code ec;
+    std::vector<fs::path> files;
+    for (fs::directory_iterator it(*robotsDir, ec), end; !ec && it != end; it.increment(ec)) {
+      if (it->path().extension() == ".urdf") files.push_back(it->path());
+    }
+    if (ec) diags.error({}, "cannot list robot folder '" + *robotsDir + "': " + ec.message());
+    std::sort(files.begin(), files.end());
+    for (const fs::path& p : files) {
+      if (auto type = loadRobotType(sources, p.string(), {}, diags)) addType(std::move(*type), {});
+    }
+    return catalog;
+  }
+
+  for (const strategy::RobotEntry& entry : strategy.robots) {
+    fs::path base = robotsDir ? fs::path(*robotsDir) : fs::path(strategy.folder);
+    fs::path path = fs::path(entry.urdf).is_absolute() ? fs::path(entry.urdf) : base / entry.urdf;
+    auto type = loadRobotType(sources, path.lexically_normal().string(), entry.at, diags);
+    if (!type) continue;
+    if (entry.type && *entry.type != type->name) {
+      diags.error(entry.at, "robot type '" + *entry.type + "' does not match the URDF robot name '" + type->name + "' in " +
+                                path.string());
+      continue;
+    }
+    for (const strategy::CapabilityAddition& add : entry.capabilities) {
+      if (!add.link.empty() && std::find(type->links.begin(), type->links.end(), add.link) == type->links.end()) {
+        diags.error(add.at, "capability '" + add.name + "' names link '" + add.link + "', which robot type '" + type->name +
+                                "' does not have");
+        continue;
+      }
+      addCapability(*type, add.name, "strategy");
+    }
+    addType(std::move(*type), entry.at);
+  }
+  return catalog;
+}
+
+}  // namespace semo

@@ -1,0 +1,161 @@
+#include "xml_support.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+
+namespace semo::xml {
+
+bool Reader::parse(tinyxml2::XMLDocument& doc) {
+  const std::string& text = sources_.text(file_);
+  if (doc.Parse(text.data(), text.size()) == tinyxml2::XML_SUCCESS) return true;
+  auto line = static_cast<std::uint32_t>(std::max(doc.ErrorLineNum(), 1));
+  std::string message = doc.ErrorStr() ? doc.ErrorStr() : "malformed XML";
+  // tinyxml2 prefixes its own "Error=XML_ERROR_... ErrorID=n (0x..) Line number=n: " header.
+  if (auto colon = message.find(": "); message.rfind("Error=", 0) == 0 && colon != std::string::npos) {
+    message = message.substr(colon + 2);
+  }
+  diags_.error({{file_, line, 1}, 1}, "malformed XML: " + message);
+  return false;
+}
+
+SourceRange Reader::at(const tinyxml2::XMLElement* e) const {
+  auto line = static_cast<std::uint32_t>(std::max(e->GetLineNum(), 1));
+  std::string_view text = sources_.lineText(file_, line);
+  std::string open = std::string("<") + e->Name();
+  std::size_t col = text.find(open);
+  if (col == std::string_view::npos) return {{file_, line, 1}, 1};
+  return {{file_, line, static_cast<std::uint32_t>(col + 1)}, static_cast<std::uint32_t>(open.size())};
+}
+
+SourceRange Reader::attributeAt(const tinyxml2::XMLElement* e, std::string_view attribute) const {
+  SourceRange element = at(e);
+  std::uint32_t last = std::min(sources_.lineCount(file_), element.begin.line + 20);
+  for (std::uint32_t line = element.begin.line; line <= last; ++line) {
+    std::string_view text = sources_.lineText(file_, line);
+    std::size_t from = line == element.begin.line ? element.begin.column : 0;
+    for (std::size_t pos = text.find(attribute, from); pos != std::string_view::npos;
+         pos = text.find(attribute, pos + 1)) {
+      bool boundary = pos == 0 || text[pos - 1] == ' ' || text[pos - 1] == '\t';
+      std::size_t after = pos + attribute.size();
+      while (after < text.size() && text[after] == ' ') ++after;
+      if (!boundary || after >= text.size() || text[after] != '=') continue;
+      std::size_t quote = after + 1;
+      while (quote < text.size() && text[quote] == ' ') ++quote;
+      if (quote < text.size() && (text[quote] == '"' || text[quote] == '\'')) {
+        std::size_t end = text.find(text[quote], quote + 1);
+        std::size_t length = end == std::string_view::npos ? 1 : end - quote + 1;
+        return {{file_, line, static_cast<std::uint32_t>(quote + 1)}, static_cast<std::uint32_t>(length)};
+      }
+      return {{file_, line, static_cast<std::uint32_t>(pos + 1)}, static_cast<std::uint32_t>(attribute.size())};
+    }
+    if (text.find('>') != std::string_view::npos && line > element.begin.line) break;
+  }
+  return element;
+}
+
+void Reader::checkAttributes(const tinyxml2::XMLElement* e, std::initializer_list<std::string_view> allowed) {
+  for (const tinyxml2::XMLAttribute* a = e->FirstAttribute(); a != nullptr; a = a->Next()) {
+    bool known = false;
+    for (std::string_view name : allowed) known = known || name == a->Name();
+    if (known) continue;
+    std::string list;
+    for (std::string_view name : allowed) list += (list.empty() ? "" : ", ") + std::string(name);
+    diags_.error(attributeAt(e, a->Name()), std::string("unknown attribute '") + a->Name() + "' of <" + e->Name() +
+                                                "> (allowed: " + (list.empty() ? "none" : list) + ")");
+  }
+}
+
+void Reader::checkChildren(const tinyxml2::XMLElement* e, std::initializer_list<std::string_view> allowed) {
+  for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c != nullptr; c = c->NextSiblingElement()) {
+    bool known = false;
+    for (std::string_view name : allowed) known = known || name == c->Name();
+    if (known) continue;
+    std::string list;
+    for (std::string_view name : allowed) list += (list.empty() ? "" : ", ") + ("<" + std::string(name) + ">");
+    error(c, std::string("unknown element <") + c->Name() + "> inside <" + e->Name() +
+                 "> (allowed: " + (list.empty() ? "none" : list) + ")");
+  }
+}
+
+std::optional<std::string> Reader::required(const tinyxml2::XMLElement* e, const char* attribute) {
+  const char* v = e->Attribute(attribute);
+  if (v == nullptr) {
+    error(e, std::string("<") + e->Name() + "> needs attribute '" + attribute + "'");
+    return std::nullopt;
+  }
+  if (*v == '\0') {
+    attributeError(e, attribute, std::string("attribute '") + attribute + "' of <" + e->Name() + "> is empty");
+    return std::nullopt;
+  }
+  return std::string(v);
+}
+
+std::optional<std::int64_t> Reader::integer(const tinyxml2::XMLElement* e, const char* attribute, std::int64_t min,
+                                            std::int64_t max) {
+  const char* v = e->Attribute(attribute);
+  if (v == nullptr) return std::nullopt;
+  std::string_view text(v);
+  std::int64_t n = 0;
+  auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+  if (ec != std::errc() || ptr != text.data() + text.size()) {
+    attributeError(e, attribute, std::string("attribute '") + attribute + "' must be an integer, not '" + v + "'");
+    return std::nullopt;
+  }
+  if (n < min || n > max) {
+    attributeError(e, attribute, std::string("attribute '") + attribute + "' must be between " + std::to_string(min) +
+                                     " and " + std::to_string(max) + ", not " + std::to_string(n));
+    return std::nullopt;
+  }
+  return n;
+}
+
+std::optional<double> Reader::number(const tinyxml2::XMLElement* e, const char* attribute) {
+  const char* v = e->Attribute(attribute);
+  if (v == nullptr) return std::nullopt;
+  char* end = nullptr;
+  double d = std::strtod(v, &end);
+  if (end == v || *end != '\0' || !std::isfinite(d)) {
+    attributeError(e, attribute, std::string("attribute '") + attribute + "' must be a number, not '" + v + "'");
+    return std::nullopt;
+  }
+  return d;
+}
+
+std::optional<std::int64_t> Reader::durationMicros(const tinyxml2::XMLElement* e, const char* attribute) {
+  const char* v = e->Attribute(attribute);
+  if (v == nullptr) return std::nullopt;
+  std::string_view text(v);
+  std::int64_t amount = 0;
+  auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), amount);
+  std::string_view unit = text.substr(static_cast<std::size_t>(ptr - text.data()));
+  while (!unit.empty() && unit.front() == ' ') unit.remove_prefix(1);
+  std::int64_t scale = 0;
+  if (unit == "USEC" || unit == "us") scale = 1;
+  if (unit == "MSEC" || unit == "ms") scale = 1000;
+  if (unit == "SEC" || unit == "s") scale = 1000000;
+  if (unit == "MIN" || unit == "min") scale = 60000000;
+  if (ec != std::errc() || scale == 0 || amount < 0 || amount > 1000000000) {
+    attributeError(e, attribute, std::string("attribute '") + attribute + "' must be a duration such as '500 MSEC' or '2 SEC', not '" +
+                                     v + "'");
+    return std::nullopt;
+  }
+  return amount * scale;
+}
+
+std::vector<std::string> splitList(std::string_view text) {
+  std::vector<std::string> out;
+  std::string current;
+  for (char c : text) {
+    if (c == ' ' || c == ',' || c == '\t' || c == '\n' || c == '\r') {
+      if (!current.empty()) out.push_back(std::move(current));
+      current.clear();
+    } else {
+      current += c;
+    }
+  }
+  if (!current.empty()) out.push_back(std::move(current));
+  return out;
+}
+
+}  // namespace semo::xml

@@ -1,0 +1,74 @@
+#include "commands.hpp"
+
+#include <iostream>
+
+#include "semo/frontend/ast_json.hpp"
+#include "semo/frontend/parser.hpp"
+#include "semo/frontend/robot_catalog.hpp"
+#include "semo/frontend/strategy.hpp"
+#include "semo/semantics/elaborate.hpp"
+
+namespace semo::cli {
+
+namespace {
+
+std::string plural(std::size_t n, const char* word) {
+  return std::to_string(n) + " " + word + (n == 1 ? "" : "s");
+}
+
+void printSummaryLine(const DiagnosticEngine& diags) {
+  if (diags.errorCount() + diags.warningCount() == 0) return;
+  std::cerr << plural(diags.errorCount(), "error") << " and " << plural(diags.warningCount(), "warning") << " generated.\n";
+}
+
+}  // namespace
+
+int runParse(const ParseOptions& options) {
+  SourceManager sources;
+  DiagnosticEngine diags(sources);
+  std::string why;
+  FileId file = sources.load(options.mission, why);
+  if (file == kNoFile) {
+    diags.error({}, why);
+    diags.print(std::cerr);
+    return kBadInput;
+  }
+  ast::Mission mission = parseMission(sources, file, diags);
+  diags.print(std::cerr);
+  printSummaryLine(diags);
+  if (diags.hasErrors()) return kBadInput;
+  std::cout << (options.json ? missionToJson(mission) : options.mission + ": parsed\n" + missionSummary(mission));
+  return kOk;
+}
+
+int runLint(const LintOptions& options) {
+  SourceManager sources;
+  DiagnosticEngine diags(sources);
+  std::string why;
+  FileId missionFile = sources.load(options.mission, why);
+  if (missionFile == kNoFile) diags.error({}, why);
+  FileId strategyFile = sources.load(options.strategy, why);
+  if (strategyFile == kNoFile) diags.error({}, why);
+  if (diags.hasErrors()) {
+    diags.print(std::cerr);
+    return kBadInput;
+  }
+  ast::Mission mission = parseMission(sources, missionFile, diags);
+  strategy::Strategy strategy = strategy::readStrategy(sources, strategyFile, diags);
+  RobotCatalog catalog = buildCatalog(strategy, options.robotsDir, sources, diags);
+  // Elaborating a mission that did not parse, or against a broken strategy, would only add noise.
+  bool inputsOk = !diags.hasErrors();
+  model::MissionModel model;
+  if (inputsOk) model = elaborate(mission, std::move(strategy), std::move(catalog), diags);
+  diags.print(std::cerr);
+  printSummaryLine(diags);
+  if (diags.hasErrors() || (options.warningsAsErrors && diags.warningCount() > 0)) return kBadInput;
+  std::size_t blocks = model.groupBlocks.size();
+  std::cout << options.mission << ": ok: " << plural(model.teams.size(), "team") << ", "
+            << plural(model.robots.size(), "robot") << ", " << plural(model.services.size(), "service") << ", "
+            << plural(model.modes.size(), "mode") << ", " << plural(blocks, "group block") << ", "
+            << plural(model.catalog.types().size(), "robot type") << "\n";
+  return kOk;
+}
+
+}  // namespace semo::cli
