@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <tuple>
 #include <ostream>
 
 namespace semo {
@@ -87,6 +88,15 @@ std::string DiagnosticEngine::format(const Diagnostic& d) const {
   formatOne(out, d);
   for (const Diagnostic& n : d.notes) formatOne(out, n);
   return out;
+}
+
+void DiagnosticEngine::sortByPosition() {
+  auto key = [](const Diagnostic& d) {
+    const SourceLocation& at = d.range.begin;
+    return std::tuple(at.valid() ? at.file + 1 : 0u, at.line, at.column);
+  };
+  std::stable_sort(diagnostics_.begin(), diagnostics_.end(),
+                   [&](const Diagnostic& a, const Diagnostic& b) { return key(a) < key(b); });
 }
 
 void DiagnosticEngine::print(std::ostream& out) const {

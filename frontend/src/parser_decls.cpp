@@ -98,14 +98,14 @@ ast::Mission Parser::parseMission() {
     return mission;
   }
   while (!at(Tok::End)) {
-    if (diags_.errorCount() - errorsAtStart_ >= kMaxErrors) {
-      diags_.error(peek().range, "too many errors; stopping");
-      break;
-    }
     std::size_t before = pos_;
     try {
       parseTopLevel(mission);
     } catch (const SyntaxError&) {
+      if (diags_.errorCount() - errorsAtStart_ >= kMaxErrors) {
+        diags_.error(peek().range, "too many errors; stopping");
+        break;
+      }
       if (pos_ == before) advance();  // always make progress
       syncTopLevel();
     }

@@ -82,7 +82,8 @@ void Parser::parseVerifyItem(ast::VerifyBlock& block) {
     if (atWord("loss")) {
       advance();
       do {
-        ast::Name kind = expectName("a loss kind");
+        // `publish` is a reserved word but also names a loss kind.
+        ast::Name kind = at(Tok::KwPublish) ? ast::Name{"publish", advance().range} : expectName("a loss kind");
         if (!contains(kLossKinds, kind.text)) {
           std::string hint = suggestClosest(kind.text, asStrings(kLossKinds));
           diags_.error(kind.range, "unknown loss kind '" + kind.text + "'; expected one of " +

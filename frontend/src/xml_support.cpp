@@ -28,7 +28,7 @@ SourceRange Reader::at(const tinyxml2::XMLElement* e) const {
   return {{file_, line, static_cast<std::uint32_t>(col + 1)}, static_cast<std::uint32_t>(open.size())};
 }
 
-SourceRange Reader::attributeAt(const tinyxml2::XMLElement* e, std::string_view attribute) const {
+SourceRange Reader::attributeAt(const tinyxml2::XMLElement* e, std::string_view attribute, bool atValue) const {
   SourceRange element = at(e);
   std::uint32_t last = std::min(sources_.lineCount(file_), element.begin.line + 20);
   for (std::uint32_t line = element.begin.line; line <= last; ++line) {
@@ -40,6 +40,9 @@ SourceRange Reader::attributeAt(const tinyxml2::XMLElement* e, std::string_view 
       std::size_t after = pos + attribute.size();
       while (after < text.size() && text[after] == ' ') ++after;
       if (!boundary || after >= text.size() || text[after] != '=') continue;
+      if (!atValue) {
+        return {{file_, line, static_cast<std::uint32_t>(pos + 1)}, static_cast<std::uint32_t>(attribute.size())};
+      }
       std::size_t quote = after + 1;
       while (quote < text.size() && text[quote] == ' ') ++quote;
       if (quote < text.size() && (text[quote] == '"' || text[quote] == '\'')) {
@@ -61,7 +64,7 @@ void Reader::checkAttributes(const tinyxml2::XMLElement* e, std::initializer_lis
     if (known) continue;
     std::string list;
     for (std::string_view name : allowed) list += (list.empty() ? "" : ", ") + std::string(name);
-    diags_.error(attributeAt(e, a->Name()), std::string("unknown attribute '") + a->Name() + "' of <" + e->Name() +
+    diags_.error(attributeAt(e, a->Name(), false), std::string("unknown attribute '") + a->Name() + "' of <" + e->Name() +
                                                 "> (allowed: " + (list.empty() ? "none" : list) + ")");
   }
 }

@@ -24,7 +24,8 @@ class Reader {
   bool parse(tinyxml2::XMLDocument& doc);
 
   [[nodiscard]] SourceRange at(const tinyxml2::XMLElement* e) const;
-  [[nodiscard]] SourceRange attributeAt(const tinyxml2::XMLElement* e, std::string_view attribute) const;
+  // Points at the attribute's value, or at its name when `atValue` is false.
+  [[nodiscard]] SourceRange attributeAt(const tinyxml2::XMLElement* e, std::string_view attribute, bool atValue = true) const;
 
   Diagnostic& error(const tinyxml2::XMLElement* e, const std::string& message) { return diags_.error(at(e), message); }
   Diagnostic& attributeError(const tinyxml2::XMLElement* e, std::string_view attribute, const std::string& message) {

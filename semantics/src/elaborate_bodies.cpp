@@ -335,11 +335,13 @@ std::unique_ptr<model::Cond> Elaborator::lowerCond(const ast::Cond& c, Index tea
   if (c.right) out->right = lowerCond(*c.right, team);
   if (c.kind != ast::Cond::Kind::Test && c.kind != ast::Cond::Kind::Compare) return out;
 
+  std::size_t errorsBefore = diags_.errorCount();
   out->lhs = lowerExpr(c.lhs, team);
   if (c.kind == ast::Cond::Kind::Compare) {
     out->op = relOp(c.op);
     out->rhs = lowerExpr(c.rhs, team);
   }
+  if (diags_.errorCount() != errorsBefore) return out;  // one error per operand is enough
   // Check the comparison against the abstract domain the checker will use.
   const model::Expr& v = out->lhs;
   if (v.kind != model::Expr::Kind::Value) {

@@ -246,6 +246,10 @@ void Elaborator::declareMains() {
       if (t.initialMode == model::kNone) t.initialMode = mode;
       bool sawDefault = false;
       for (const ast::Transition& tr : c.transitions) {
+        if (!tr.isDefault) {
+          // Record the catch even when the target is wrong, so the event is not also reported unused.
+          t.events[eventIndex(t, tr.event.text)].caughtAt.push_back(tr.event.range);
+        }
         Index target = m_.findMode(team, tr.target.text);
         if (target == model::kNone) {
           std::vector<std::string> names;
@@ -276,7 +280,6 @@ void Elaborator::declareMains() {
             }
           }
           if (twice) continue;
-          t.events[transition.event].caughtAt.push_back(tr.event.range);
         }
         m_.modes[mode].transitions.push_back(transition);
       }
@@ -338,8 +341,9 @@ void Elaborator::checkStrategyAgainstMission() {
     Index team = m_.findTeam(ls.team);
     Index service = team == model::kNone ? model::kNone : m_.findService(team, ls.service);
     if (service == model::kNone || m_.services[service].plan != ls.plan) {
-      diags_.error(ls.at, "leader selection names service '" + ls.team + "." + ls.plan + "." + ls.service +
-                              "', which the mission does not define");
+      // A warning, not an error: one strategy may serve several missions of the same robots.
+      diags_.warning(ls.at, "leader selection names service '" + ls.team + "." + ls.plan + "." + ls.service +
+                                "', which the mission does not define");
       continue;
     }
     bool hasLeader = std::any_of(m_.groupBlocks.begin(), m_.groupBlocks.end(), [&](const model::GroupBlock& b) {

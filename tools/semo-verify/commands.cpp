@@ -4,9 +4,7 @@
 
 #include "semo/frontend/ast_json.hpp"
 #include "semo/frontend/parser.hpp"
-#include "semo/frontend/robot_catalog.hpp"
-#include "semo/frontend/strategy.hpp"
-#include "semo/semantics/elaborate.hpp"
+#include "semo/semantics/load.hpp"
 
 namespace semo::cli {
 
@@ -44,30 +42,16 @@ int runParse(const ParseOptions& options) {
 int runLint(const LintOptions& options) {
   SourceManager sources;
   DiagnosticEngine diags(sources);
-  std::string why;
-  FileId missionFile = sources.load(options.mission, why);
-  if (missionFile == kNoFile) diags.error({}, why);
-  FileId strategyFile = sources.load(options.strategy, why);
-  if (strategyFile == kNoFile) diags.error({}, why);
-  if (diags.hasErrors()) {
-    diags.print(std::cerr);
-    return kBadInput;
-  }
-  ast::Mission mission = parseMission(sources, missionFile, diags);
-  strategy::Strategy strategy = strategy::readStrategy(sources, strategyFile, diags);
-  RobotCatalog catalog = buildCatalog(strategy, options.robotsDir, sources, diags);
-  // Elaborating a mission that did not parse, or against a broken strategy, would only add noise.
-  bool inputsOk = !diags.hasErrors();
-  model::MissionModel model;
-  if (inputsOk) model = elaborate(mission, std::move(strategy), std::move(catalog), diags);
+  std::optional<model::MissionModel> model =
+      loadMission({options.mission, options.strategy, options.robotsDir}, sources, diags);
+  diags.sortByPosition();
   diags.print(std::cerr);
   printSummaryLine(diags);
-  if (diags.hasErrors() || (options.warningsAsErrors && diags.warningCount() > 0)) return kBadInput;
-  std::size_t blocks = model.groupBlocks.size();
-  std::cout << options.mission << ": ok: " << plural(model.teams.size(), "team") << ", "
-            << plural(model.robots.size(), "robot") << ", " << plural(model.services.size(), "service") << ", "
-            << plural(model.modes.size(), "mode") << ", " << plural(blocks, "group block") << ", "
-            << plural(model.catalog.types().size(), "robot type") << "\n";
+  if (!model || (options.warningsAsErrors && diags.warningCount() > 0)) return kBadInput;
+  std::cout << options.mission << ": ok: " << plural(model->teams.size(), "team") << ", "
+            << plural(model->robots.size(), "robot") << ", " << plural(model->services.size(), "service") << ", "
+            << plural(model->modes.size(), "mode") << ", " << plural(model->groupBlocks.size(), "group block") << ", "
+            << plural(model->catalog.types().size(), "robot type") << "\n";
   return kOk;
 }
 

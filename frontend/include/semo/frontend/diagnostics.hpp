@@ -32,6 +32,9 @@ class DiagnosticEngine {
   [[nodiscard]] bool hasErrors() const { return errors_ != 0; }
   [[nodiscard]] const std::deque<Diagnostic>& diagnostics() const { return diagnostics_; }
 
+  // Orders diagnostics by file, line and column (stable; those without a position first), so that a
+  // user reads them top to bottom whatever pass found them.
+  void sortByPosition();
   // Prints every diagnostic in the order reported, each with its line and caret.
   void print(std::ostream& out) const;
   [[nodiscard]] std::string format(const Diagnostic& d) const;

@@ -1,0 +1,25 @@
+#include "semo/semantics/load.hpp"
+
+#include "semo/frontend/parser.hpp"
+#include "semo/semantics/elaborate.hpp"
+
+namespace semo {
+
+std::optional<model::MissionModel> loadMission(const MissionInputs& inputs, SourceManager& sources, DiagnosticEngine& diags) {
+  std::string why;
+  FileId missionFile = sources.load(inputs.mission, why);
+  if (missionFile == kNoFile) diags.error({}, why);
+  FileId strategyFile = sources.load(inputs.strategy, why);
+  if (strategyFile == kNoFile) diags.error({}, why);
+  if (diags.hasErrors()) return std::nullopt;
+
+  ast::Mission mission = parseMission(sources, missionFile, diags);
+  strategy::Strategy strategy = strategy::readStrategy(sources, strategyFile, diags);
+  RobotCatalog catalog = buildCatalog(strategy, inputs.robotsDir, sources, diags);
+  if (diags.hasErrors()) return std::nullopt;
+  model::MissionModel model = elaborate(mission, std::move(strategy), std::move(catalog), diags);
+  if (diags.hasErrors()) return std::nullopt;
+  return model;
+}
+
+}  // namespace semo

@@ -1,0 +1,137 @@
+// Runs every annotated input under tests/diagnostics/ and compares the diagnostics semo reports with
+// the expectations written in the file itself:
+//
+//   # expected-error@+1:7 {{undefined mode 'SEARCH'}}      (mission files, in a comment)
+//   <!-- expected-warning@+1:3 {{timeout}} -->             (strategy and URDF files)
+//
+// `@+N` / `@-N` are relative to the annotation's line, `@N` is absolute; `:COL` is the exact column.
+// The text in {{ }} must occur in the message. Every error and warning reported in the annotated file
+// must be expected, and every expectation must be met. Directives choose the companion files:
+//   # strategy: ../common/strategy.xml      (mission cases; this is the default)
+//   <!-- mission: ../common/mission.semo --> (strategy cases; this is the default)
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "semo/frontend/robot_catalog.hpp"
+#include "semo/semantics/load.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Expectation {
+  semo::Severity severity;
+  std::uint32_t line;
+  std::uint32_t column;
+  std::string text;
+  bool met = false;
+};
+
+std::string readFile(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+std::vector<Expectation> readExpectations(const std::string& text) {
+  static const std::regex pattern(R"(expected-(error|warning|note)@([+-]?)(\d+):(\d+)\s*\{\{(.*?)\}\})");
+  std::vector<Expectation> out;
+  std::istringstream lines(text);
+  std::string line;
+  for (std::uint32_t number = 1; std::getline(lines, line); ++number) {
+    for (std::sregex_iterator it(line.begin(), line.end(), pattern), end; it != end; ++it) {
+      const std::smatch& m = *it;
+      auto severity = m[1] == "error" ? semo::Severity::Error : m[1] == "warning" ? semo::Severity::Warning : semo::Severity::Note;
+      auto amount = static_cast<std::uint32_t>(std::stoul(m[3]));
+      std::uint32_t target = m[2] == "+" ? number + amount : m[2] == "-" ? number - amount : amount;
+      out.push_back({severity, target, static_cast<std::uint32_t>(std::stoul(m[4])), m[5], false});
+    }
+  }
+  return out;
+}
+
+std::string directive(const std::string& text, const std::string& key, const std::string& fallback) {
+  std::smatch m;
+  std::regex pattern(key + R"(:\s*([^\s>]+))");
+  return std::regex_search(text, m, pattern) ? m[1].str() : fallback;
+}
+
+const char* name(semo::Severity s) {
+  return s == semo::Severity::Error ? "error" : s == semo::Severity::Warning ? "warning" : "note";
+}
+
+std::vector<fs::path> cases() {
+  std::vector<fs::path> out;
+  for (const char* folder : {"mission", "strategy", "urdf"}) {
+    fs::path dir = fs::path(SEMO_DIAGNOSTICS_DIR) / folder;
+    if (!fs::exists(dir)) continue;
+    for (const auto& entry : fs::directory_iterator(dir)) out.push_back(entry.path());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+class DiagnosticCase : public ::testing::TestWithParam<fs::path> {};
+
+TEST_P(DiagnosticCase, ReportsExactlyTheExpectedDiagnostics) {
+  const fs::path& file = GetParam();
+  std::string text = readFile(file);
+  std::vector<Expectation> expected = readExpectations(text);
+  ASSERT_FALSE(expected.empty()) << file << " has no expected-error/expected-warning annotation";
+
+  semo::SourceManager sources;
+  semo::DiagnosticEngine diags(sources);
+  std::string kind = file.parent_path().filename().string();
+  fs::path dir = file.parent_path();
+  if (kind == "mission") {
+    fs::path strategy = dir / directive(text, "strategy", "../common/strategy.xml");
+    semo::loadMission({file.string(), strategy.lexically_normal().string(), std::nullopt}, sources, diags);
+  } else if (kind == "strategy") {
+    fs::path mission = dir / directive(text, "mission", "../common/mission.semo");
+    semo::loadMission({mission.lexically_normal().string(), file.string(), std::nullopt}, sources, diags);
+  } else {
+    semo::loadRobotType(sources, file.string(), {}, diags);
+  }
+
+  std::vector<const semo::Diagnostic*> all;
+  for (const semo::Diagnostic& d : diags.diagnostics()) {
+    all.push_back(&d);
+    for (const semo::Diagnostic& n : d.notes) all.push_back(&n);
+  }
+  for (const semo::Diagnostic* d : all) {
+    const semo::SourceLocation& at = d->range.begin;
+    bool inFile = at.valid() && fs::path(sources.path(at.file)).lexically_normal() == file.lexically_normal();
+    bool matched = false;
+    for (Expectation& e : expected) {
+      if (e.met || !inFile || e.severity != d->severity || e.line != at.line || e.column != at.column) continue;
+      if (d->message.find(e.text) == std::string::npos) continue;
+      e.met = matched = true;
+      break;
+    }
+    // Warnings about the shared companion files (such as an unused leader selection) are not the case's concern.
+    bool companionWarning = !inFile && d->severity == semo::Severity::Warning;
+    if (!matched && d->severity != semo::Severity::Note && !companionWarning) {
+      ADD_FAILURE() << "unexpected diagnostic:\n" << diags.format(*d);
+    }
+  }
+  for (const Expectation& e : expected) {
+    EXPECT_TRUE(e.met) << file.filename().string() << ": expected " << name(e.severity) << " at " << e.line << ":" << e.column
+                       << " containing '" << e.text << "' was not reported";
+  }
+}
+
+std::string caseName(const ::testing::TestParamInfo<fs::path>& info) {
+  std::string n = info.param.parent_path().filename().string() + "_" + info.param.stem().string();
+  std::replace_if(n.begin(), n.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
+  return n;
+}
+
+INSTANTIATE_TEST_SUITE_P(Files, DiagnosticCase, ::testing::ValuesIn(cases()), caseName);
+
+}  // namespace
