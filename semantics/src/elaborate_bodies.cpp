@@ -382,6 +382,10 @@ std::unique_ptr<model::Cond> Elaborator::lowerCond(const ast::Cond& c, Index tea
     } else if (k.kind != model::Expr::Kind::Bool) {
       diags_.error(c.rhs.range, "value '" + name + "' is boolean; compare it with true or false, or test it alone");
     }
+  } else if (v.valueKind == model::ValueKind::Knowledge) {
+    if (c.kind == ast::Cond::Kind::Compare && k.kind != model::Expr::Kind::Int) {
+      diags_.error(c.rhs.range, "knowledge '" + name + "' is a set of facts; compare the number of facts held with an integer");
+    }
   } else if (v.valueKind == model::ValueKind::Topic && v.topic != model::kNone) {
     const model::Topic& t = m_.topics[v.topic];
     if (c.kind == ast::Cond::Kind::Compare && (k.kind == model::Expr::Kind::Symbol || k.kind == model::Expr::Kind::String) &&
@@ -423,6 +427,13 @@ model::Expr Elaborator::lowerExpr(const ast::Expr& e, Index team) {
     out.topic = topic;
     m_.topics[topic].read = true;
     return out;
+  }
+  for (const strategy::Service& service : m_.strategy.services) {
+    for (const strategy::Knowledge& k : service.knowledge) {
+      if (k.name != e.var.text) continue;
+      out.valueKind = model::ValueKind::Knowledge;
+      return out;
+    }
   }
   std::vector<std::string> candidates;
   for (const strategy::Value& v : m_.strategy.values) {
