@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# One command for everything on a fresh Debian 12 machine: installs the Debian packages semo needs
+# (only those missing), builds, and then
+#   run       runs semo-verify on the paper's scouting mission
+#   test      also runs the whole test suite
+#   sanitize  builds a second time with AddressSanitizer + UndefinedBehaviorSanitizer and runs the tests
+#   fuzz      builds the libFuzzer targets with clang and fuzzes each for FUZZ_SECONDS (default 300)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+mode="${1:-run}"
+jobs="$(nproc)"
+
+packages=(build-essential cmake pkg-config libz3-dev libeigen3-dev libsundials-dev liburdfdom-dev
+          libtinyxml2-dev libcli11-dev nlohmann-json3-dev libfmt-dev libgtest-dev libbenchmark-dev spin graphviz)
+if [ "$mode" = fuzz ]; then packages+=(clang libclang-rt-14-dev); fi
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "== installing: ${missing[*]}"
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+build() {  # build DIR [cmake options...]
+  local dir="$1"; shift
+  cmake -S . -B "$dir" "$@" > "$dir.configure.log" 2>&1 || { cat "$dir.configure.log"; exit 1; }
+  cmake --build "$dir" -j "$jobs"
+}
+
+scouting=(specs/examples/scouting/scouting.semo --strategy specs/examples/scouting/strategy.xml)
+
+case "$mode" in
+  run)
+    build build -DCMAKE_BUILD_TYPE=Release -DSEMO_BUILD_TESTS=OFF
+    ./build/tools/semo-verify lint "${scouting[@]}"
+    ;;
+  test)
+    build build -DCMAKE_BUILD_TYPE=Release -DSEMO_BUILD_TESTS=ON
+    ./build/tools/semo-verify lint "${scouting[@]}"
+    ctest --test-dir build --output-on-failure -j "$jobs"
+    ;;
+  sanitize)
+    build build-sanitize -DCMAKE_BUILD_TYPE=Debug -DSEMO_SANITIZE=ON -DSEMO_BUILD_TESTS=ON
+    ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+      ctest --test-dir build-sanitize --output-on-failure -j "$jobs"
+    ;;
+  fuzz)
+    build build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DSEMO_FUZZ=ON
+    seconds="${FUZZ_SECONDS:-300}"
+    # Seed corpora: the project's own missions and strategies.
+    mkdir -p build-fuzz/corpus-fuzz_mission_parser build-fuzz/corpus-fuzz_strategy_reader
+    for f in specs/*.semo specs/examples/*/*.semo tests/diagnostics/common/*.semo; do
+      cp "$f" "build-fuzz/corpus-fuzz_mission_parser/$(echo "$f" | tr / _)"
+    done
+    for f in specs/examples/*/strategy.xml tests/diagnostics/common/*.xml; do
+      cp "$f" "build-fuzz/corpus-fuzz_strategy_reader/$(echo "$f" | tr / _)"
+    done
+    for target in fuzz_mission_parser fuzz_strategy_reader; do
+      corpus="build-fuzz/corpus-$target"
+      echo "== fuzzing $target for ${seconds}s"
+      ./build-fuzz/tests/fuzz/"$target" -max_total_time="$seconds" -max_len=8192 -timeout=10 \
+        -artifact_prefix=build-fuzz/ "$corpus"
+    done
+    ;;
+  *)
+    echo "usage: tools/setup.sh run|test|sanitize|fuzz" >&2
+    exit 2
+    ;;
+esac
