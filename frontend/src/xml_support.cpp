@@ -10,12 +10,36 @@ bool Reader::parse(tinyxml2::XMLDocument& doc) {
   const std::string& text = sources_.text(file_);
   if (doc.Parse(text.data(), text.size()) == tinyxml2::XML_SUCCESS) return true;
   auto line = static_cast<std::uint32_t>(std::max(doc.ErrorLineNum(), 1));
-  std::string message = doc.ErrorStr() ? doc.ErrorStr() : "malformed XML";
-  // tinyxml2 prefixes its own "Error=XML_ERROR_... ErrorID=n (0x..) Line number=n: " header.
-  if (auto colon = message.find(": "); message.rfind("Error=", 0) == 0 && colon != std::string::npos) {
-    message = message.substr(colon + 2);
+  // tinyxml2's own text ("Error=XML_ERROR_MISMATCHED_ELEMENT ErrorID=14 (0xe) Line number=2:
+  // XMLElement name=service") names the culprit; say it in words a user reads.
+  std::string raw = doc.ErrorStr() ? doc.ErrorStr() : "";
+  std::string element;
+  if (auto at = raw.find("name="); at != std::string::npos) element = raw.substr(at + 5);
+  std::string message;
+  switch (doc.ErrorID()) {
+    case tinyxml2::XML_ERROR_MISMATCHED_ELEMENT:
+      message = "element <" + element + "> is not closed, or is closed by the wrong tag";
+      break;
+    case tinyxml2::XML_ERROR_PARSING_ELEMENT: message = "malformed element" + (element.empty() ? "" : " <" + element + ">"); break;
+    case tinyxml2::XML_ERROR_PARSING_ATTRIBUTE: message = "malformed attribute (attribute values must be quoted)"; break;
+    case tinyxml2::XML_ERROR_PARSING_TEXT: message = "malformed text (a '<' or '&' must be escaped)"; break;
+    case tinyxml2::XML_ERROR_PARSING_COMMENT: message = "unterminated comment"; break;
+    case tinyxml2::XML_ERROR_PARSING_CDATA: message = "unterminated CDATA section"; break;
+    case tinyxml2::XML_ERROR_PARSING_DECLARATION: message = "malformed XML declaration"; break;
+    case tinyxml2::XML_ERROR_EMPTY_DOCUMENT: message = "the document is empty"; break;
+    case tinyxml2::XML_ELEMENT_DEPTH_EXCEEDED: message = "elements are nested too deeply"; break;
+    default: message = "cannot parse the document"; break;
   }
-  diags_.error({{file_, line, 1}, 1}, "malformed XML: " + message);
+  std::uint32_t column = 1;
+  std::uint32_t length = 1;
+  if (!element.empty()) {
+    std::string_view lineText = sources_.lineText(file_, line);
+    if (auto pos = lineText.find("<" + element); pos != std::string_view::npos) {
+      column = static_cast<std::uint32_t>(pos + 1);
+      length = static_cast<std::uint32_t>(element.size() + 1);
+    }
+  }
+  diags_.error({{file_, line, column}, length}, "malformed XML: " + message);
   return false;
 }
 
