@@ -32,6 +32,7 @@ int runParse(const ParseOptions& options) {
     return kBadInput;
   }
   ast::Mission mission = parseMission(sources, file, diags);
+  diags.sortByPosition();
   diags.print(std::cerr);
   printSummaryLine(diags);
   if (diags.hasErrors()) return kBadInput;
