@@ -252,8 +252,8 @@ ast::Stmt Parser::parseGroupBlock() {
       }
     }
   }
+  if (stmt.arms.empty()) failExpected("'group (...)', 'leader (...)' or 'others'", "after '[['");
   if (!at(Tok::RGroup)) {
-    if (stmt.arms.empty()) failExpected("'group (...)', 'leader (...)' or 'others'", "after '[['");
     failExpected("']]' or another group", "to close the group block");
   }
   advance();

@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <set>
 #include <stdexcept>
 
@@ -84,10 +85,17 @@ const XMLElement* culprit(const XMLElement* robot, const std::string& message) {
       b = e;
     }
   }
+  // For "not unique" the second element of that name is the culprit, otherwise the first.
+  bool duplicate = message.find("unique") != std::string::npos;
   for (const std::string& n : names) {
+    const XMLElement* found = nullptr;
     for (const XMLElement* e = robot->FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {
-      if (const char* attr = e->Attribute("name"); attr != nullptr && n == attr) return e;
+      if (const char* attr = e->Attribute("name"); attr != nullptr && n == attr) {
+        found = e;
+        if (!duplicate) break;
+      }
     }
+    if (found != nullptr) return found;
   }
   return robot;
 }
@@ -160,6 +168,37 @@ void deriveFromModel(const urdf::ModelInterface& model, RobotType& type) {
   type.wheels = g;
 }
 
+// Checks that the joints form a tree before urdfdom sees them: urdfdom leaks the links of a cycle,
+// and its message ("No root link found") names neither the joint nor the link at fault.
+bool checkJointTree(const XMLElement* robot, xml::Reader& xml) {
+  std::map<std::string, const XMLElement*> parentJointOf;  // child link -> joint
+  std::map<std::string, std::string> parentLinkOf;         // child link -> parent link
+  bool ok = true;
+  for (const XMLElement* j = robot->FirstChildElement("joint"); j != nullptr; j = j->NextSiblingElement("joint")) {
+    const XMLElement* parent = j->FirstChildElement("parent");
+    const XMLElement* child = j->FirstChildElement("child");
+    if (parent == nullptr || child == nullptr || !parent->Attribute("link") || !child->Attribute("link")) continue;
+    std::string childLink = child->Attribute("link");
+    if (auto [it, added] = parentJointOf.emplace(childLink, j); !added) {
+      Diagnostic& d = xml.error(j, "invalid URDF: link '" + childLink + "' is the child of two joints");
+      DiagnosticEngine::note(d, xml.at(it->second), "first joint with that child");
+      ok = false;
+      continue;
+    }
+    parentLinkOf[childLink] = parent->Attribute("link");
+  }
+  for (const auto& [start, joint] : parentJointOf) {
+    std::set<std::string> seen{start};
+    for (auto it = parentLinkOf.find(start); it != parentLinkOf.end(); it = parentLinkOf.find(it->second)) {
+      if (!seen.insert(it->second).second || it->second == start) {
+        xml.error(joint, "invalid URDF: joints form a cycle through link '" + start + "' (a robot's links must form a tree)");
+        return false;
+      }
+    }
+  }
+  return ok;
+}
+
 }  // namespace
 
 bool RobotType::has(const std::string& capability) const {
@@ -208,6 +247,7 @@ std::optional<RobotType> loadRobotType(SourceManager& sources, const std::string
     return std::nullopt;
   }
 
+  if (!checkJointTree(robot, xml)) return std::nullopt;
   urdf::ModelInterfaceSharedPtr model;
   std::vector<std::string> errors;
   {
@@ -221,7 +261,9 @@ std::optional<RobotType> loadRobotType(SourceManager& sources, const std::string
   }
   if (!model) {
     if (errors.empty()) errors.push_back("urdfdom rejected the robot description");
-    for (const std::string& message : errors) xml.error(culprit(robot, message), "invalid URDF: " + message);
+    // urdfdom follows its specific message with generic ones ("joint xml is not initialized
+    // correctly"): the first says what is wrong.
+    xml.error(culprit(robot, errors.front()), "invalid URDF: " + errors.front());
     return std::nullopt;
   }
 

@@ -116,14 +116,19 @@ void Elaborator::declareTeams() {
         }
       }
       std::int64_t count = r.count.value_or(1);
+      if (static_cast<std::int64_t>(m_.robots.size()) + count > kMaxRobots) {
+        diags_.error(r.count ? r.countRange : r.name.range,
+                     "too many robots: a mission may declare at most " + std::to_string(kMaxRobots));
+        continue;
+      }
       for (std::int64_t i = 0; i < count; ++i) {
         std::string name = r.count ? r.name.text + "_" + std::to_string(i) : r.name.text;
-        if (Index other = m_.findRobot(name); other != model::kNone) {
+        auto robotIndex = static_cast<Index>(m_.robots.size());
+        if (auto [it, added] = robotByName_.emplace(name, robotIndex); !added) {
           Diagnostic& d = diags_.error(r.name.range, "robot '" + name + "' is declared twice");
-          DiagnosticEngine::note(d, m_.robots[other].declaredAt, "first declared here");
+          DiagnosticEngine::note(d, m_.robots[it->second].declaredAt, "first declared here");
           break;
         }
-        auto robotIndex = static_cast<Index>(m_.robots.size());
         m_.robots.push_back({name, teamIndex, r.type.text, static_cast<Index>(team.robots.size()), r.name.range});
         team.robots.push_back(robotIndex);
       }

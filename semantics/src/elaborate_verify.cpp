@@ -143,8 +143,10 @@ void Elaborator::lowerAtom(const ast::Ltl& f, model::Ltl& out) {
   if (attr == "alive" || attr == "leader") {
     out.attribute = attr == "alive" ? model::Ltl::Attribute::Alive : model::Ltl::Attribute::Leader;
     if (robot == model::kNone) {
-      diags_.error(lhs.var.range, "'" + attr + "' is a property of one robot; name a robot (for example '" +
-                                      m_.robots[m_.teams[team].robots.front()].name + "." + attr + "')");
+      const std::vector<Index>& members = m_.teams[team].robots;
+      std::string example = members.empty() ? "robot" : m_.robots[members.front()].name;
+      diags_.error(lhs.var.range, "'" + attr + "' is a property of one robot; name a robot (for example '" + example +
+                                      "." + attr + "')");
     } else if (f.op) {
       diags_.error(f.rhs.range, "'" + lhs.owner.text + "." + attr + "' is true or false; use it without a comparison");
     }

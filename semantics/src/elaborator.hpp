@@ -2,6 +2,7 @@
 // The elaboration passes share one class; each elaborate_*.cpp holds one pass.
 #include <map>
 #include <set>
+#include <unordered_map>
 #include <string>
 #include <vector>
 
@@ -62,9 +63,12 @@ class Elaborator {
 
   [[nodiscard]] std::vector<std::string> teamNames() const;
 
+  static constexpr std::int64_t kMaxRobots = 100000;
+
   const ast::Mission& ast_;
   model::MissionModel& m_;
   DiagnosticEngine& diags_;
+  std::unordered_map<std::string, Index> robotByName_;
   std::vector<const ast::Service*> serviceAst_;  // parallel to m_.services
   std::set<std::pair<Index, RobotSet>> walked_;
   std::set<std::pair<Index, std::string>> reportedMissing_;  // (call site line key) dedupe
