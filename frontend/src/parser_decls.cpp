@@ -159,6 +159,9 @@ void Parser::parseTeamDecl(ast::Mission& mission) {
       expect(Tok::RBracket, "after the number of robots");
     }
     team.robots.push_back(std::move(robot));
+    if (at(Tok::Ident) && peek(1).kind == Tok::Ident) {
+      fail(peek(), "expected ',' before another robot declaration");
+    }
   } while (accept(Tok::Comma));
   mission.teams.push_back(std::move(team));
 }

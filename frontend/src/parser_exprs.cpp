@@ -96,7 +96,9 @@ ast::Expr Parser::parseExpr() {
       if (accept(Tok::Dot)) {
         e.kind = ast::Expr::Kind::Value;
         e.owner = {std::string(t.text), t.range};
-        e.var = expectName("a value name after '" + std::string(t.text) + ".'");
+        // `r.leader` is a property atom although `leader` is a reserved word.
+        e.var = at(Tok::KwLeader) ? ast::Name{"leader", advance().range}
+                                  : expectName("a value name after '" + std::string(t.text) + ".'");
         e.range = spanOf(t, tokens_[pos_ - 1]);
       } else {
         e.kind = ast::Expr::Kind::Symbol;

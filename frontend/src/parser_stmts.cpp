@@ -118,8 +118,8 @@ ast::Stmt Parser::parseStatement(bool allowGroups) {
     case Tok::LGroup:
       if (!allowGroups) {
         diags_.error(peek().range, "group blocks '[[ ]]' cannot be nested inside a group or 'if'");
-        parseGroupBlock();  // parse it anyway so that its own errors are found
-        throw SyntaxError{};
+        stmt = parseGroupBlock();  // kept, so that its own errors are found and the body is not "empty"
+        break;
       }
       stmt = parseGroupBlock();
       break;
@@ -182,6 +182,7 @@ ast::Stmt Parser::parseStatement(bool allowGroups) {
           stmt.args.push_back(parseExpr());
         } while (accept(Tok::Comma));
       }
+      if (!at(Tok::RParen) && !stmt.args.empty()) failExpected("',' or ')'", "in the argument list");
       expect(Tok::RParen, "to close the argument list");
       break;
     }
@@ -239,11 +240,13 @@ ast::Stmt Parser::parseGroupBlock() {
   stmt.kind = ast::Stmt::Kind::GroupBlock;
   const Token& open = advance();
   stmt.range = open.range;
+  bool armFailed = false;
   while (at(Tok::KwGroup) || at(Tok::KwLeader) || at(Tok::KwOthers)) {
     std::size_t before = pos_;
     try {
       stmt.arms.push_back(parseGroupArm());
     } catch (const SyntaxError&) {
+      armFailed = true;
       if (pos_ == before) advance();
       syncStatement();
       while (!at(Tok::RGroup) && !at(Tok::KwGroup) && !at(Tok::KwLeader) && !at(Tok::KwOthers) && !at(Tok::End) &&
@@ -252,7 +255,14 @@ ast::Stmt Parser::parseGroupBlock() {
       }
     }
   }
-  if (stmt.arms.empty()) failExpected("'group (...)', 'leader (...)' or 'others'", "after '[['");
+  if (stmt.arms.empty()) {
+    if (at(Tok::RGroup)) {
+      diags_.error(peek().range, "empty group block: expected 'group (...)', 'leader (...)' or 'others' after '[['");
+      advance();
+      throw SyntaxError{};
+    }
+    failExpected("'group (...)', 'leader (...)' or 'others'", "after '[['");
+  }
   if (!at(Tok::RGroup)) {
     failExpected("']]' or another group", "to close the group block");
   }
@@ -280,7 +290,7 @@ ast::Stmt Parser::parseGroupBlock() {
       }
     }
   }
-  if (leaders == 0 && groups == 0 && others > 0) {
+  if (leaders == 0 && groups == 0 && others > 0 && !armFailed) {
     diags_.error(stmt.arms.front().keyword, "a group block needs a 'group (...)' or 'leader (...)' before 'others'");
   }
   return stmt;

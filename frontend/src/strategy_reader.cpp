@@ -216,8 +216,9 @@ class StrategyReader {
     } else {
       if (kind != "primitive") {
         xml_.attributeError(e, "kind", "service kind must be 'primitive' or 'group', not '" + kind + "'");
+      } else {
+        xml_.checkChildren(e, {"param", "implementation"});
       }
-      xml_.checkChildren(e, {"param", "implementation"});
       if (e->Attribute("min-robots")) xml_.attributeError(e, "min-robots", "'min-robots' applies to group services only");
     }
     if (duplicate(s.services, [&](const Service& x) { return x.name == *name; }, e, "service '" + *name + "'")) return;
@@ -238,9 +239,9 @@ class StrategyReader {
       xml_.checkAttributes(k, {"name", "values", "merge"});
       xml_.checkChildren(k, {});
       auto name = xml_.required(k, "name");
-      auto values = xml_.required(k, "values");
-      if (!name || !values) continue;
-      Knowledge item{*name, xml::splitList(*values), Knowledge::Merge::Newest, xml_.at(k)};
+      auto values = xml_.required(k, "values");  // reported if missing; the item is kept for the goal
+      if (!name) continue;
+      Knowledge item{*name, xml::splitList(values.value_or("")), Knowledge::Merge::Newest, xml_.at(k)};
       std::string merge = k->Attribute("merge") ? k->Attribute("merge") : "newest";
       if (merge == "union") {
         item.merge = Knowledge::Merge::Union;
@@ -280,7 +281,7 @@ class StrategyReader {
                                [&](const Knowledge& k) { return k.name == *knowledge; });
         if (it == service.knowledge.end()) {
           xml_.attributeError(g, "knowledge", "goal names unknown knowledge '" + *knowledge + "'");
-        } else if (goal.count > static_cast<std::int64_t>(it->values.size())) {
+        } else if (!it->values.empty() && goal.count > static_cast<std::int64_t>(it->values.size())) {
           xml_.attributeError(g, "count", "goal count " + std::to_string(goal.count) + " can never be reached: knowledge '" +
                                               it->name + "' has only " + std::to_string(it->values.size()) + " facts");
         }

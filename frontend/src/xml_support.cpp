@@ -8,7 +8,14 @@ namespace semo::xml {
 
 bool Reader::parse(tinyxml2::XMLDocument& doc) {
   const std::string& text = sources_.text(file_);
-  if (doc.Parse(text.data(), text.size()) == tinyxml2::XML_SUCCESS) return true;
+  if (doc.Parse(text.data(), text.size()) == tinyxml2::XML_SUCCESS) {
+    const tinyxml2::XMLElement* root = doc.RootElement();
+    if (root != nullptr && root->NextSiblingElement() != nullptr) {
+      error(root->NextSiblingElement(), "malformed XML: a second root element (a document has exactly one)");
+      return false;
+    }
+    return true;
+  }
   auto line = static_cast<std::uint32_t>(std::max(doc.ErrorLineNum(), 1));
   // tinyxml2's own text ("Error=XML_ERROR_MISMATCHED_ELEMENT ErrorID=14 (0xe) Line number=2:
   // XMLElement name=service") names the culprit; say it in words a user reads.
@@ -21,7 +28,9 @@ bool Reader::parse(tinyxml2::XMLDocument& doc) {
       message = "element <" + element + "> is not closed, or is closed by the wrong tag";
       break;
     case tinyxml2::XML_ERROR_PARSING_ELEMENT: message = "malformed element" + (element.empty() ? "" : " <" + element + ">"); break;
-    case tinyxml2::XML_ERROR_PARSING_ATTRIBUTE: message = "malformed attribute (attribute values must be quoted)"; break;
+    case tinyxml2::XML_ERROR_PARSING_ATTRIBUTE:
+      message = "malformed attribute (a value not in quotes, or an attribute given twice)";
+      break;
     case tinyxml2::XML_ERROR_PARSING_TEXT: message = "malformed text (a '<' or '&' must be escaped)"; break;
     case tinyxml2::XML_ERROR_PARSING_COMMENT: message = "unterminated comment"; break;
     case tinyxml2::XML_ERROR_PARSING_CDATA: message = "unterminated CDATA section"; break;

@@ -62,6 +62,7 @@ void Elaborator::walkBody(const std::vector<model::Stmt>& body, const RobotSet& 
         requireImplementation(s, robots);
         break;
       case model::Stmt::Kind::CallComposite: {
+        m_.services[s.composite].used = true;  // even when the call is rejected below: it is not "unused"
         if (std::find(stack.begin(), stack.end(), s.composite) != stack.end()) {
           std::string chain;
           auto from = std::find(stack.begin(), stack.end(), s.composite);
@@ -107,6 +108,7 @@ void Elaborator::walkCond(const model::Cond& c, const RobotSet& robots) {
     std::vector<std::string> missing;
     for (Index r = 0; r < robots.size(); ++r) {
       if (!robots[r] || value->implementationFor(m_.robots[r].type) != nullptr) continue;
+      if (m_.catalog.find(m_.robots[r].type) == nullptr) continue;
       if (std::find(missing.begin(), missing.end(), m_.robots[r].type) == missing.end()) missing.push_back(m_.robots[r].type);
     }
     for (const std::string& type : missing) {
@@ -127,6 +129,8 @@ void Elaborator::requireImplementation(const model::Stmt& call, const RobotSet& 
   for (Index r = 0; r < robots.size(); ++r) {
     if (!robots[r]) continue;
     ++count;
+    // A robot of an unknown type is already an error; asking for its implementation would repeat it.
+    if (m_.catalog.find(m_.robots[r].type) == nullptr) continue;
     if (service->implementationFor(m_.robots[r].type) != nullptr) continue;
     if (std::find(missing.begin(), missing.end(), m_.robots[r].type) == missing.end()) missing.push_back(m_.robots[r].type);
   }

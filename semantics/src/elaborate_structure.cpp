@@ -69,7 +69,8 @@ std::vector<std::string> Elaborator::teamNames() const {
 
 Index Elaborator::teamOrError(const ast::Name& name, const std::string& role) {
   Index t = m_.findTeam(name.text);
-  if (t == model::kNone) {
+  // With no team declared at all, "the mission declares no team" already says it.
+  if (t == model::kNone && !ast_.teams.empty()) {
     diags_.error(name.range, withHint("undefined team '" + name.text + "'" + (role.empty() ? "" : " " + role), name.text,
                                       teamNames()));
   }
@@ -135,8 +136,12 @@ void Elaborator::declareTeams() {
     }
     m_.teams.push_back(std::move(team));
   }
-  if (ast_.teams.empty() && !ast_.services.empty()) {
-    diags_.error(ast_.services.front().range, "the mission declares no team: start it with 'Team: RobotType robot'");
+  if (ast_.teams.empty()) {
+    SourceRange at = !ast_.services.empty() ? ast_.services.front().range
+                     : !ast_.modes.empty()  ? ast_.modes.front().team.range
+                     : !ast_.mains.empty()  ? ast_.mains.front().range
+                                            : SourceRange{{ast_.file, 1, 1}, 1};
+    diags_.error(at, "the mission declares no team: start it with 'Team: RobotType robot'");
   }
 }
 
@@ -342,6 +347,22 @@ void Elaborator::computeReachability() {
 }
 
 void Elaborator::checkStrategyAgainstMission() {
+  auto checkImplementations = [&](const std::vector<strategy::Implementation>& impls) {
+    for (const strategy::Implementation& impl : impls) {
+      if (m_.catalog.find(impl.robotType) != nullptr) continue;
+      diags_.error(impl.at, withHint("implementation for unknown robot type '" + impl.robotType + "'", impl.robotType,
+                                     m_.catalog.typeNames()));
+    }
+  };
+  for (const strategy::Service& s : m_.strategy.services) checkImplementations(s.implementations);
+  for (const strategy::Value& v : m_.strategy.values) checkImplementations(v.implementations);
+  for (const strategy::EventOverride& o : m_.strategy.eventOverrides) {
+    bool thrown = std::any_of(m_.teams.begin(), m_.teams.end(), [&](const model::Team& t) {
+      return std::any_of(t.events.begin(), t.events.end(),
+                         [&](const model::Event& e) { return e.name == o.name && !e.thrownAt.empty(); });
+    });
+    if (!thrown) diags_.warning(o.delivery.at, "event '" + o.name + "' is configured but the mission never throws it");
+  }
   for (const strategy::LeaderSelection& ls : m_.strategy.leaderSelections) {
     Index team = m_.findTeam(ls.team);
     Index service = team == model::kNone ? model::kNone : m_.findService(team, ls.service);

@@ -39,6 +39,13 @@ void Elaborator::elaborateVerify() {
         continue;
       }
       everyTeam = &c;
+      std::size_t largest = 0;
+      for (const model::Team& t : m_.teams) largest = std::max(largest, t.robots.size());
+      if (!m_.teams.empty() && c.budget > static_cast<std::int64_t>(largest)) {
+        diags_.error(c.range, "crash budget " + std::to_string(c.budget) + " exceeds the size of every team (the largest has " +
+                                  std::to_string(largest) + " robots)");
+        continue;
+      }
       for (Index t = 0; t < m_.teams.size(); ++t) {
         if (crashOf[t] == nullptr) {
           a.crashBudget[t] = std::min<std::int64_t>(c.budget, static_cast<std::int64_t>(m_.teams[t].robots.size()));

@@ -223,7 +223,7 @@ TEST(Parser, RecoversAndReportsSeveralErrors) {
       "T.main { case (M): default: mode = M }\n");
   std::vector<std::string> m = p->messages();
   ASSERT_EQ(m.size(), 3u) << ::testing::PrintToString(m);
-  EXPECT_EQ(m[0], "3:12: expected ')' to close the argument list, found an integer");
+  EXPECT_EQ(m[0], "3:12: expected ',' or ')' in the argument list, found an integer");
   EXPECT_EQ(m[1], "5:13: expected ',' after the team name, found 'T'");
   EXPECT_EQ(m[2], "7:13: expected ',' between plan and service in 'set', found 'S'");
   // What parsed is kept: the later main block is there.
