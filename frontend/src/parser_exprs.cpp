@@ -111,29 +111,11 @@ ast::Expr Parser::parseExpr() {
 }
 
 std::unique_ptr<ast::Cond> Parser::parseCond() {
-  auto left = parseAndCond();
-  while (at(Tok::KwOr)) {
-    auto node = std::make_unique<ast::Cond>();
-    node->kind = ast::Cond::Kind::Or;
-    node->range = advance().range;
-    node->left = std::move(left);
-    node->right = parseAndCond();
-    left = std::move(node);
-  }
-  return left;
+  return leftAssociative<ast::Cond>(Tok::KwOr, ast::Cond::Kind::Or, [this] { return parseAndCond(); });
 }
 
 std::unique_ptr<ast::Cond> Parser::parseAndCond() {
-  auto left = parseNotCond();
-  while (at(Tok::KwAnd)) {
-    auto node = std::make_unique<ast::Cond>();
-    node->kind = ast::Cond::Kind::And;
-    node->range = advance().range;
-    node->left = std::move(left);
-    node->right = parseNotCond();
-    left = std::move(node);
-  }
-  return left;
+  return leftAssociative<ast::Cond>(Tok::KwAnd, ast::Cond::Kind::And, [this] { return parseNotCond(); });
 }
 
 std::unique_ptr<ast::Cond> Parser::parseNotCond() {

@@ -1,5 +1,6 @@
 #pragma once
 // The recursive-descent parser shared by parser_*.cpp (one class, split by part of the grammar).
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,21 @@ class Parser {
   ast::GroupCondition parseGroupCondition();
   void parseTopic(ast::Stmt& stmt, bool withValue);
   [[nodiscard]] bool atStatementStart() const;
+
+  // `next (op next)*`, folded to the left: the shared shape of `and` / `or` in conditions and LTL.
+  template <typename Node, typename Next>
+  std::unique_ptr<Node> leftAssociative(Tok op, typename Node::Kind kind, Next next) {
+    auto left = next();
+    while (at(op)) {
+      auto node = std::make_unique<Node>();
+      node->kind = kind;
+      node->range = advance().range;
+      node->left = std::move(left);
+      node->right = next();
+      left = std::move(node);
+    }
+    return left;
+  }
 
   // expressions (parser_exprs.cpp)
   std::unique_ptr<ast::Cond> parseCond();

@@ -149,29 +149,11 @@ std::unique_ptr<ast::Ltl> Parser::parseLtlUntil() {
 }
 
 std::unique_ptr<ast::Ltl> Parser::parseLtlOr() {
-  auto left = parseLtlAnd();
-  while (at(Tok::KwOr)) {
-    auto node = std::make_unique<ast::Ltl>();
-    node->kind = ast::Ltl::Kind::Or;
-    node->range = advance().range;
-    node->left = std::move(left);
-    node->right = parseLtlAnd();
-    left = std::move(node);
-  }
-  return left;
+  return leftAssociative<ast::Ltl>(Tok::KwOr, ast::Ltl::Kind::Or, [this] { return parseLtlAnd(); });
 }
 
 std::unique_ptr<ast::Ltl> Parser::parseLtlAnd() {
-  auto left = parseLtlUnary();
-  while (at(Tok::KwAnd)) {
-    auto node = std::make_unique<ast::Ltl>();
-    node->kind = ast::Ltl::Kind::And;
-    node->range = advance().range;
-    node->left = std::move(left);
-    node->right = parseLtlUnary();
-    left = std::move(node);
-  }
-  return left;
+  return leftAssociative<ast::Ltl>(Tok::KwAnd, ast::Ltl::Kind::And, [this] { return parseLtlUnary(); });
 }
 
 std::unique_ptr<ast::Ltl> Parser::parseLtlUnary() {

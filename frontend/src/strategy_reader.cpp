@@ -457,18 +457,19 @@ const Port* Task::port(const std::string& portName) const {
   return nullptr;
 }
 
-const Implementation* Service::implementationFor(const std::string& robotType) const {
+const Implementation* findImplementation(const std::vector<Implementation>& implementations, const std::string& robotType) {
   for (const Implementation& i : implementations) {
     if (i.robotType == robotType) return &i;
   }
   return nullptr;
 }
 
+const Implementation* Service::implementationFor(const std::string& robotType) const {
+  return findImplementation(implementations, robotType);
+}
+
 const Implementation* Value::implementationFor(const std::string& robotType) const {
-  for (const Implementation& i : implementations) {
-    if (i.robotType == robotType) return &i;
-  }
-  return nullptr;
+  return findImplementation(implementations, robotType);
 }
 
 const Service* Strategy::service(const std::string& name) const {

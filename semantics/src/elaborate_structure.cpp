@@ -67,6 +67,12 @@ std::vector<std::string> Elaborator::teamNames() const {
   return names;
 }
 
+std::vector<std::string> Elaborator::modeNames(Index team) const {
+  std::vector<std::string> names;
+  for (Index md : m_.teams[team].modes) names.push_back(m_.modes[md].name);
+  return names;
+}
+
 Index Elaborator::teamOrError(const ast::Name& name, const std::string& role) {
   Index t = m_.findTeam(name.text);
   // With no team declared at all, "the mission declares no team" already says it.
@@ -241,10 +247,8 @@ void Elaborator::declareMains() {
     for (const ast::Case& c : main.cases) {
       Index mode = m_.findMode(team, c.mode.text);
       if (mode == model::kNone) {
-        std::vector<std::string> names;
-        for (Index md : t.modes) names.push_back(m_.modes[md].name);
         diags_.error(c.mode.range, withHint("main case for undefined mode '" + c.mode.text + "' of team '" + t.name + "'",
-                                            c.mode.text, names));
+                                            c.mode.text, modeNames(team)));
         continue;
       }
       if (caseOf[mode] != nullptr) {
@@ -262,10 +266,8 @@ void Elaborator::declareMains() {
         }
         Index target = m_.findMode(team, tr.target.text);
         if (target == model::kNone) {
-          std::vector<std::string> names;
-          for (Index md : t.modes) names.push_back(m_.modes[md].name);
           diags_.error(tr.target.range, withHint("undefined mode '" + tr.target.text + "' of team '" + t.name + "'",
-                                                 tr.target.text, names));
+                                                 tr.target.text, modeNames(team)));
           continue;
         }
         model::Transition transition;

@@ -168,10 +168,8 @@ void Elaborator::lowerAtom(const ast::Ltl& f, model::Ltl& out) {
     }
     out.mode = m_.findMode(ownerTeam, f.rhs.text);
     if (out.mode == model::kNone) {
-      std::vector<std::string> names;
-      for (Index md : m_.teams[ownerTeam].modes) names.push_back(m_.modes[md].name);
       diags_.error(f.rhs.range, withHint("undefined mode '" + f.rhs.text + "' of team '" + m_.teams[ownerTeam].name + "'",
-                                         f.rhs.text, names));
+                                         f.rhs.text, modeNames(ownerTeam)));
     }
     return;
   }

@@ -62,6 +62,7 @@ class Elaborator {
   void lowerAtom(const ast::Ltl& f, model::Ltl& out);
 
   [[nodiscard]] std::vector<std::string> teamNames() const;
+  [[nodiscard]] std::vector<std::string> modeNames(Index team) const;
 
   static constexpr std::int64_t kMaxRobots = 100000;
 

@@ -39,6 +39,8 @@ struct Implementation {
   SourceRange at;
 };
 
+const Implementation* findImplementation(const std::vector<Implementation>& implementations, const std::string& robotType);
+
 struct Knowledge {
   enum class Merge { Newest, Union };
   std::string name;
