@@ -307,6 +307,11 @@ RobotCatalog buildCatalog(const strategy::Strategy& strategy, const std::optiona
   for (const strategy::RobotEntry& entry : strategy.robots) {
     fs::path base = robotsDir ? fs::path(*robotsDir) : fs::path(strategy.folder);
     fs::path path = fs::path(entry.urdf).is_absolute() ? fs::path(entry.urdf) : base / entry.urdf;
+    // With --robots, a strategy written for another layout still works: fall back to the file name.
+    std::error_code ec;
+    if (robotsDir && !fs::exists(path, ec) && fs::exists(base / fs::path(entry.urdf).filename(), ec)) {
+      path = base / fs::path(entry.urdf).filename();
+    }
     auto type = loadRobotType(sources, path.lexically_normal().string(), entry.at, diags);
     if (!type) continue;
     if (entry.type && *entry.type != type->name) {
