@@ -1,6 +1,7 @@
 #pragma once
 // The subcommands of semo-verify. Each returns the process exit code:
 // 0 clean, 1 property violated, 2 bad input, 3 resource limit reached.
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -20,7 +21,30 @@ struct LintOptions {
   bool warningsAsErrors = false;
 };
 
+struct ModelInput {
+  std::string input;  // a mission (.semo, with --strategy) or an IR file (.ir)
+  std::optional<std::string> strategy;
+  std::optional<std::string> robotsDir;
+  std::optional<int> crash;                // --crash N: overrides the verify block
+  std::optional<std::string> loss;         // --loss none|publish|events|all
+};
+
+struct CheckOptions {
+  ModelInput model;
+  std::uint64_t maxStates = 50'000'000;
+  std::uint64_t maxMemoryMiB = 8192;
+  bool json = false;
+};
+
+struct ExportOptions {
+  ModelInput model;
+  std::string format;  // "ir" or "promela"
+  std::optional<std::string> output;
+};
+
 int runParse(const ParseOptions& options);
+int runCheck(const CheckOptions& options);
+int runExport(const ExportOptions& options);
 int runLint(const LintOptions& options);
 
 }  // namespace semo::cli

@@ -25,6 +25,32 @@ int main(int argc, char** argv) {
                       "Folder of URDF files; strategy URDF paths are resolved against it (default: the strategy's folder)");
   lintCmd->add_flag("--warnings-as-errors,-W", lint.warningsAsErrors, "Exit 2 when there is any warning");
 
+  auto addModelOptions = [](CLI::App* cmd, semo::cli::ModelInput& in) {
+    cmd->add_option("input", in.input, "Mission file (.semo, with --strategy) or IR file (.ir)")->required();
+    cmd->add_option("--strategy,-s", in.strategy, "Strategy file (.xml), for a mission");
+    cmd->add_option("--robots,-r", in.robotsDir, "Folder of URDF files");
+    cmd->add_option("--crash", in.crash, "Up to N robots of each team may crash (overrides the verify block)")
+        ->check(CLI::Range(0, 100000));
+    cmd->add_option("--loss", in.loss, "Which messages may be lost (overrides the verify block)")
+        ->check(CLI::IsMember({"none", "publish", "events", "knowledge", "heartbeats", "all"}));
+  };
+
+  semo::cli::CheckOptions check;
+  CLI::App* checkCmd = app.add_subcommand("check", "Prove the mission's safety properties, or print a counterexample");
+  addModelOptions(checkCmd, check.model);
+  checkCmd->add_option("--max-states", check.maxStates, "Stop after this many states (exit 3, partial result)");
+  checkCmd->add_option("--max-memory", check.maxMemoryMiB, "Stop when the state store reaches this many MiB (exit 3)");
+  checkCmd->add_flag("--json", check.json, "Print the verdicts and counterexamples as JSON (specs/trace.md)");
+
+  semo::cli::ExportOptions exportOptions;
+  CLI::App* exportCmd = app.add_subcommand("export", "Write the mission's formal model as IR text or Promela");
+  addModelOptions(exportCmd, exportOptions.model);
+  auto* formats = exportCmd->add_option_group("format", "What to write");
+  formats->add_flag_callback("--ir", [&] { exportOptions.format = "ir"; }, "The IR in its text form (specs/ir.md)");
+  formats->add_flag_callback("--promela", [&] { exportOptions.format = "promela"; }, "Promela for SPIN, one atomic step per rule");
+  formats->require_option(1);
+  exportCmd->add_option("--output,-o", exportOptions.output, "Write to this file (default: standard output)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -39,5 +65,7 @@ int main(int argc, char** argv) {
   }
   if (*parseCmd) return semo::cli::runParse(parse);
   if (*lintCmd) return semo::cli::runLint(lint);
+  if (*checkCmd) return semo::cli::runCheck(check);
+  if (*exportCmd) return semo::cli::runExport(exportOptions);
   return semo::cli::kBadInput;
 }

@@ -1,0 +1,85 @@
+#pragma once
+// The IR prepared for fast evaluation: expressions as postfix programs over an array of variable
+// values, and the bit layout that packs a state into 64-bit words.
+#include <cstdint>
+#include <vector>
+
+#include "semo/semantics/ir.hpp"
+
+namespace semo::checker {
+
+using Value = std::int32_t;
+
+// A postfix program; evaluating it never allocates.
+class Program {
+ public:
+  Program() = default;
+  explicit Program(const ir::Expr& e);
+  [[nodiscard]] Value eval(const Value* vars) const;
+
+ private:
+  struct Instr {
+    ir::Op op;
+    std::int32_t operand;
+  };
+  void compile(const ir::Expr& e);
+  std::vector<Instr> code_;
+  std::size_t maxStack_ = 0;
+  std::size_t depth_ = 0;
+};
+
+class StateLayout {
+ public:
+  explicit StateLayout(const ir::Model& model);
+  [[nodiscard]] std::size_t words() const { return words_; }
+  [[nodiscard]] std::size_t variables() const { return fields_.size(); }
+  [[nodiscard]] std::size_t bits() const { return bits_; }
+  void pack(const Value* values, std::uint64_t* out) const;
+  void unpack(const std::uint64_t* in, Value* values) const;
+
+ private:
+  struct Field {
+    std::uint32_t word, shift, width;
+    Value min;
+  };
+  std::vector<Field> fields_;
+  std::size_t words_ = 1;
+  std::size_t bits_ = 0;
+};
+
+struct CompiledAssignment {
+  ir::VarId var;
+  Program value;
+};
+
+struct CompiledBranch {
+  std::vector<CompiledAssignment> assignments;
+};
+
+struct CompiledRule {
+  Program guard;
+  std::vector<CompiledBranch> branches;
+};
+
+class CompiledModel {
+ public:
+  explicit CompiledModel(const ir::Model& model);
+  [[nodiscard]] const ir::Model& model() const { return *model_; }
+  [[nodiscard]] const StateLayout& layout() const { return layout_; }
+  [[nodiscard]] const std::vector<CompiledRule>& rules() const { return rules_; }
+  [[nodiscard]] const std::vector<Program>& invariants() const { return invariants_; }
+  [[nodiscard]] const Program* validEnd() const { return hasValidEnd_ ? &validEnd_ : nullptr; }
+  [[nodiscard]] std::vector<Value> initialValues() const;
+  // Whether `value` fits the declared range of `var` (an update out of range is a model error).
+  [[nodiscard]] bool inRange(ir::VarId var, Value value) const;
+
+ private:
+  const ir::Model* model_;
+  StateLayout layout_;
+  std::vector<CompiledRule> rules_;
+  std::vector<Program> invariants_;
+  Program validEnd_;
+  bool hasValidEnd_ = false;
+};
+
+}  // namespace semo::checker

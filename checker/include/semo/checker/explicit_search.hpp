@@ -1,0 +1,45 @@
+#pragma once
+// Explicit-state breadth-first search for safety properties on the IR. BFS order makes every
+// counterexample a shortest one. A property is "proven" only when the whole reachable state space
+// was explored; reaching a limit leaves the unviolated properties "unknown" with the coverage said.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "semo/checker/trace.hpp"
+#include "semo/semantics/ir.hpp"
+
+namespace semo::checker {
+
+struct SearchLimits {
+  std::uint64_t maxStates = 50'000'000;
+  std::uint64_t maxMemoryBytes = 8ull << 30;
+};
+
+enum class Verdict { Proven, Violated, Unknown };
+const char* verdictName(Verdict v);
+
+struct PropertyResult {
+  std::string name;
+  std::string origin;
+  Verdict verdict = Verdict::Unknown;
+  std::optional<Trace> counterexample;
+};
+
+struct SearchResult {
+  std::vector<PropertyResult> properties;  // the invariants in order, then deadlock_freedom if asked
+  std::uint64_t states = 0;
+  std::uint64_t transitions = 0;
+  std::uint32_t depth = 0;       // BFS levels explored
+  bool complete = false;         // the whole reachable state space was explored
+  std::string limitReached;      // why the search stopped early, if it did
+  std::uint64_t bytesPerState = 0;
+  std::uint64_t peakBytes = 0;
+  double seconds = 0;
+  std::optional<Trace> rangeError;  // an update leaving a variable's range: a modelling error
+};
+
+SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits);
+
+}  // namespace semo::checker

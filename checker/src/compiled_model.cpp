@@ -1,0 +1,132 @@
+#include "semo/checker/compiled_model.hpp"
+
+#include <algorithm>
+#include <bit>
+
+namespace semo::checker {
+
+Program::Program(const ir::Expr& e) {
+  compile(e);
+}
+
+void Program::compile(const ir::Expr& e) {
+  // Every operand is evaluated, `?:` too: expressions have no side effects, so a select is exact.
+  for (const ir::Expr& a : e.args) compile(a);
+  code_.push_back({e.op, e.value});
+  if (e.op == ir::Op::Const || e.op == ir::Op::Var) {
+    maxStack_ = std::max(maxStack_, ++depth_);
+  } else {
+    depth_ -= e.args.size() - 1;
+  }
+}
+
+Value Program::eval(const Value* vars) const {
+  constexpr std::size_t kInline = 64;
+  Value inlineStack[kInline];
+  std::vector<Value> heap;
+  Value* stack = inlineStack;
+  if (maxStack_ > kInline) {
+    heap.resize(maxStack_);
+    stack = heap.data();
+  }
+  std::size_t sp = 0;
+  for (const Instr& in : code_) {
+    switch (in.op) {
+      case ir::Op::Const: stack[sp++] = in.operand; break;
+      case ir::Op::Var: stack[sp++] = vars[in.operand]; break;
+      case ir::Op::Not: stack[sp - 1] = stack[sp - 1] == 0; break;
+      case ir::Op::Neg: stack[sp - 1] = -stack[sp - 1]; break;
+      case ir::Op::Ite: {
+        Value e = stack[--sp], t = stack[--sp];
+        stack[sp - 1] = stack[sp - 1] != 0 ? t : e;
+        break;
+      }
+      default: {
+        Value b = stack[--sp];
+        Value& a = stack[sp - 1];
+        switch (in.op) {
+          case ir::Op::Add: a = a + b; break;
+          case ir::Op::Sub: a = a - b; break;
+          case ir::Op::Mul: a = a * b; break;
+          case ir::Op::Div: a = b == 0 ? 0 : a / b; break;  // total: x/0 = 0, as in the SMT encoding
+          case ir::Op::Mod: a = b == 0 ? 0 : a % b; break;
+          case ir::Op::Min: a = std::min(a, b); break;
+          case ir::Op::Max: a = std::max(a, b); break;
+          case ir::Op::Eq: a = a == b; break;
+          case ir::Op::Ne: a = a != b; break;
+          case ir::Op::Lt: a = a < b; break;
+          case ir::Op::Le: a = a <= b; break;
+          case ir::Op::Gt: a = a > b; break;
+          case ir::Op::Ge: a = a >= b; break;
+          case ir::Op::And: a = (a != 0) && (b != 0); break;
+          case ir::Op::Or: a = (a != 0) || (b != 0); break;
+          case ir::Op::Implies: a = (a == 0) || (b != 0); break;
+          default: break;
+        }
+      }
+    }
+  }
+  return stack[0];
+}
+
+StateLayout::StateLayout(const ir::Model& model) {
+  std::uint32_t word = 0, shift = 0;
+  for (const ir::Variable& v : model.variables) {
+    auto span = static_cast<std::uint64_t>(static_cast<std::int64_t>(v.max) - v.min);
+    auto width = static_cast<std::uint32_t>(span == 0 ? 0 : std::bit_width(span));
+    if (shift + width > 64) {
+      ++word;
+      shift = 0;
+    }
+    fields_.push_back({word, shift, width, v.min});
+    shift += width;
+    bits_ += width;
+  }
+  words_ = word + 1;
+}
+
+void StateLayout::pack(const Value* values, std::uint64_t* out) const {
+  std::fill(out, out + words_, 0);
+  for (std::size_t i = 0; i < fields_.size(); ++i) {
+    const Field& f = fields_[i];
+    out[f.word] |= static_cast<std::uint64_t>(static_cast<std::int64_t>(values[i]) - f.min) << f.shift;
+  }
+}
+
+void StateLayout::unpack(const std::uint64_t* in, Value* values) const {
+  for (std::size_t i = 0; i < fields_.size(); ++i) {
+    const Field& f = fields_[i];
+    std::uint64_t mask = f.width == 64 ? ~0ull : ((1ull << f.width) - 1);
+    values[i] = static_cast<Value>(static_cast<std::int64_t>((in[f.word] >> f.shift) & mask) + f.min);
+  }
+}
+
+CompiledModel::CompiledModel(const ir::Model& model) : model_(&model), layout_(model) {
+  for (const ir::Rule& r : model.rules) {
+    CompiledRule c{Program(r.guard), {}};
+    for (const ir::Branch& b : r.branches) {
+      CompiledBranch cb;
+      for (const ir::Assignment& a : b.assignments) cb.assignments.push_back({a.var, Program(a.value)});
+      c.branches.push_back(std::move(cb));
+    }
+    rules_.push_back(std::move(c));
+  }
+  for (const ir::Invariant& inv : model.invariants) invariants_.emplace_back(inv.holds);
+  if (model.validEnd) {
+    validEnd_ = Program(*model.validEnd);
+    hasValidEnd_ = true;
+  }
+}
+
+std::vector<Value> CompiledModel::initialValues() const {
+  std::vector<Value> values;
+  for (const ir::Variable& v : model_->variables) values.push_back(v.init);
+  return values;
+}
+
+bool CompiledModel::inRange(ir::VarId var, Value value) const {
+  const ir::Variable& v = model_->variables[var];
+  return value >= v.min && value <= v.max;
+}
+
+}  // namespace semo::checker

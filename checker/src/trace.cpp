@@ -1,0 +1,71 @@
+#include "semo/checker/trace.hpp"
+
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace semo::checker {
+
+namespace {
+
+std::string valueText(const ir::Variable& v, std::int32_t value) {
+  if (v.isBool) return value != 0 ? "true" : "false";
+  auto index = static_cast<std::size_t>(value - v.min);
+  if (value >= v.min && index < v.valueNames.size()) return v.valueNames[index];
+  return std::to_string(value);
+}
+
+std::string robotName(const ir::Model& m, const ir::Rule& r) {
+  return r.robot == ir::kNoRobot ? "-" : m.robots.at(static_cast<std::size_t>(r.robot));
+}
+
+}  // namespace
+
+std::string traceToText(const ir::Model& m, const Trace& t) {
+  std::ostringstream out;
+  out << "counterexample for " << t.property << " (" << t.kind << "): " << t.steps.size() << " step"
+      << (t.steps.size() == 1 ? "" : "s") << "\n";
+  for (std::size_t i = 0; i < t.steps.size(); ++i) {
+    if (i == t.loopStart) out << "  -- loop starts here (the steps below repeat for ever) --\n";
+    const Step& s = t.steps[i];
+    const ir::Rule& r = m.rules.at(s.rule);
+    out << "  " << (i + 1) << ". [" << robotName(m, r) << "] " << (r.label.empty() ? r.name : r.label);
+    if (r.branches.size() > 1) out << " (outcome " << (s.branch + 1) << ")";
+    if (r.kind != ir::RuleKind::Step) out << "  {" << ir::kindName(r.kind) << "}";
+    if (!r.origin.empty()) out << "  at " << r.origin;
+    out << "\n";
+    for (const Change& c : s.changes) {
+      const ir::Variable& v = m.variables.at(c.var);
+      out << "       " << v.name << ": " << valueText(v, c.before) << " -> " << valueText(v, c.after) << "\n";
+    }
+  }
+  if (t.kind == "deadlock") out << "  then no rule is enabled, and the state is not a valid end state\n";
+  if (t.kind == "invariant") out << "  then " << t.property << " does not hold\n";
+  if (t.kind == "range") out << "  the last step assigns a value outside a variable's declared range (a modelling error)\n";
+  return out.str();
+}
+
+std::string traceToJson(const ir::Model& m, const Trace& t) {
+  using nlohmann::json;
+  json initial = json::object();
+  for (ir::VarId v = 0; v < t.initial.size(); ++v) initial[m.variables[v].name] = t.initial[v];
+  json steps = json::array();
+  for (std::size_t i = 0; i < t.steps.size(); ++i) {
+    const Step& s = t.steps[i];
+    const ir::Rule& r = m.rules.at(s.rule);
+    json changes = json::array();
+    for (const Change& c : s.changes) {
+      const ir::Variable& v = m.variables.at(c.var);
+      changes.push_back({{"var", v.name}, {"from", c.before}, {"to", c.after},
+                         {"fromText", valueText(v, c.before)}, {"toText", valueText(v, c.after)}});
+    }
+    json step = {{"step", i + 1}, {"rule", r.name}, {"kind", ir::kindName(r.kind)}, {"label", r.label},
+                 {"origin", r.origin}, {"branch", s.branch}, {"changes", changes}};
+    step["robot"] = r.robot == ir::kNoRobot ? json(nullptr) : json(m.robots.at(static_cast<std::size_t>(r.robot)));
+    steps.push_back(step);
+  }
+  json root = {{"property", t.property}, {"kind", t.kind}, {"initial", initial}, {"steps", steps}};
+  if (t.loopStart != SIZE_MAX) root["loopStart"] = t.loopStart + 1;
+  return root.dump(2) + "\n";
+}
+
+}  // namespace semo::checker

@@ -1,0 +1,97 @@
+#pragma once
+// The IR: one finite transition system in guarded-command form that every engine reads (explicit
+// search, SMT, the Promela and PRISM exports). Bounded integer variables (booleans are 0..1), and
+// rules `guard -> simultaneous assignments`, each tagged with the robot that fires it, what kind
+// of step it is, and the mission location it comes from. See specs/ir.md.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace semo::ir {
+
+using VarId = std::uint32_t;
+inline constexpr std::int32_t kNoRobot = -1;
+
+struct Variable {
+  std::string name;
+  std::int32_t min = 0, max = 1;
+  std::int32_t init = 0;
+  bool isBool = false;
+  std::int32_t robot = kNoRobot;  // the robot it belongs to, if any (for traces and symmetry)
+  std::vector<std::string> valueNames;  // optional names of min, min+1, ... (modes, phases) for traces
+};
+
+enum class Op : std::uint8_t {
+  Const, Var,
+  Not, Neg,
+  Add, Sub, Mul, Div, Mod, Min, Max,
+  Eq, Ne, Lt, Le, Gt, Ge,
+  And, Or, Implies,
+  Ite,  // args: condition, then, else
+};
+
+struct Expr {
+  Op op = Op::Const;
+  std::int32_t value = 0;  // Const: the constant; Var: the VarId
+  std::vector<Expr> args;
+
+  static Expr constant(std::int32_t v) { return {Op::Const, v, {}}; }
+  static Expr var(VarId id) { return {Op::Var, static_cast<std::int32_t>(id), {}}; }
+  static Expr unary(Op op, Expr a) { return {op, 0, {std::move(a)}}; }
+  static Expr binary(Op op, Expr a, Expr b) { return {op, 0, {std::move(a), std::move(b)}}; }
+  static Expr ite(Expr c, Expr t, Expr e) { return {Op::Ite, 0, {std::move(c), std::move(t), std::move(e)}}; }
+  [[nodiscard]] bool isTrue() const { return op == Op::Const && value != 0; }
+};
+
+// Folds a list with And / Or; the empty conjunction is true, the empty disjunction false.
+Expr conjunction(std::vector<Expr> parts);
+Expr disjunction(std::vector<Expr> parts);
+
+enum class RuleKind : std::uint8_t { Step, Delivery, Loss, Crash, Environment, Timer };
+const char* kindName(RuleKind kind);
+std::optional<RuleKind> kindFromName(const std::string& name);
+
+struct Assignment {
+  VarId var = 0;
+  Expr value;
+};
+
+// One outcome of a rule. A rule with several branches is a probabilistic choice among them (their
+// probabilities add up to 1); explicit search takes every branch as a successor.
+struct Branch {
+  double probability = 1.0;
+  std::vector<Assignment> assignments;  // simultaneous: every right-hand side reads the old state
+};
+
+struct Rule {
+  std::string name;
+  std::int32_t robot = kNoRobot;
+  RuleKind kind = RuleKind::Step;
+  std::string origin;  // "file:line:col" of the mission construct, or empty
+  std::string label;   // what the step means for a person ("throws find_color_paper")
+  Expr guard;
+  std::vector<Branch> branches;
+  bool weaklyFair = false;  // for liveness: a rule enabled for ever is taken eventually
+};
+
+struct Invariant {
+  std::string name;
+  std::string origin;
+  Expr holds;  // must hold in every reachable state
+};
+
+struct Model {
+  std::vector<std::string> robots;  // robot names, indexed by Rule::robot / Variable::robot
+  std::vector<Variable> variables;
+  std::vector<Rule> rules;
+  std::vector<Invariant> invariants;
+  // A state where no rule is enabled is a deadlock unless this holds (e.g. every robot has
+  // finished or crashed). Absent: deadlock_freedom is not checked.
+  std::optional<Expr> validEnd;
+  std::vector<std::string> assumptions;  // what the model assumes, in words, for every verdict
+
+  [[nodiscard]] std::optional<VarId> find(const std::string& variableName) const;
+};
+
+}  // namespace semo::ir

@@ -1,0 +1,37 @@
+#include "semo/semantics/ir.hpp"
+
+#include <array>
+
+namespace semo::ir {
+
+namespace {
+constexpr std::array<const char*, 6> kKindNames{"step", "delivery", "loss", "crash", "environment", "timer"};
+
+Expr fold(std::vector<Expr> parts, Op op, std::int32_t empty) {
+  if (parts.empty()) return Expr::constant(empty);
+  Expr out = std::move(parts.front());
+  for (std::size_t i = 1; i < parts.size(); ++i) out = Expr::binary(op, std::move(out), std::move(parts[i]));
+  return out;
+}
+}  // namespace
+
+Expr conjunction(std::vector<Expr> parts) { return fold(std::move(parts), Op::And, 1); }
+Expr disjunction(std::vector<Expr> parts) { return fold(std::move(parts), Op::Or, 0); }
+
+const char* kindName(RuleKind kind) { return kKindNames[static_cast<std::size_t>(kind)]; }
+
+std::optional<RuleKind> kindFromName(const std::string& name) {
+  for (std::size_t i = 0; i < kKindNames.size(); ++i) {
+    if (name == kKindNames[i]) return static_cast<RuleKind>(i);
+  }
+  return std::nullopt;
+}
+
+std::optional<VarId> Model::find(const std::string& variableName) const {
+  for (VarId i = 0; i < variables.size(); ++i) {
+    if (variables[i].name == variableName) return i;
+  }
+  return std::nullopt;
+}
+
+}  // namespace semo::ir

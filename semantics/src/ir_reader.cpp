@@ -1,0 +1,430 @@
+// Reads the text form of the IR (specs/ir.md).
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <unordered_map>
+
+#include "semo/semantics/ir_text.hpp"
+
+namespace semo::ir {
+
+namespace {
+
+enum class T { End, Name, Int, Number, String, Punct };
+
+struct Token {
+  T kind = T::End;
+  std::string_view text;
+  SourceRange range;
+};
+
+struct Failure {};
+
+class Reader {
+ public:
+  Reader(const SourceManager& sources, FileId file, DiagnosticEngine& diags)
+      : text_(sources.text(file)), file_(file), diags_(diags) {
+    tokenize();
+  }
+
+  std::optional<Model> run() {
+    try {
+      expectWord("semo-ir", "at the start of an IR file");
+      const Token& version = expectKind(T::Int, "the IR version");
+      if (version.text != "1") fail(version, "unsupported IR version " + std::string(version.text) + " (this semo reads version 1)");
+      accept(";");
+      while (peek().kind != T::End) item();
+    } catch (const Failure&) {
+      return std::nullopt;
+    }
+    if (diags_.hasErrors()) return std::nullopt;
+    return std::move(model_);
+  }
+
+ private:
+  // ---- tokens
+  void tokenize() {
+    std::size_t pos = 0, lineStart = 0;
+    std::uint32_t line = 1;
+    auto range = [&](std::size_t b, std::size_t e) {
+      return SourceRange{{file_, line, static_cast<std::uint32_t>(b - lineStart + 1)}, static_cast<std::uint32_t>(e - b)};
+    };
+    while (pos < text_.size()) {
+      char c = text_[pos];
+      if (c == '\n') {
+        ++line;
+        lineStart = ++pos;
+        continue;
+      }
+      if (c == ' ' || c == '\t' || c == '\r') {
+        ++pos;
+        continue;
+      }
+      if (c == '#') {
+        while (pos < text_.size() && text_[pos] != '\n') ++pos;
+        continue;
+      }
+      std::size_t b = pos;
+      if (std::isalpha(static_cast<unsigned char>(c)) || c == '_') {
+        while (pos < text_.size() && (std::isalnum(static_cast<unsigned char>(text_[pos])) || text_[pos] == '_' ||
+                                      text_[pos] == '.' || text_[pos] == '-')) {
+          // '-' belongs to a name only inside "semo-ir"; elsewhere it is an operator.
+          if (text_[pos] == '-' && text_.substr(b, pos - b) != "semo") break;
+          if (text_[pos] == '.' && pos + 1 < text_.size() && text_[pos + 1] == '.') break;  // `0..3`
+          ++pos;
+        }
+        // An index suffix `[N]` is part of the name: arrays are flattened.
+        if (pos < text_.size() && text_[pos] == '[') {
+          std::size_t e = pos + 1;
+          while (e < text_.size() && std::isdigit(static_cast<unsigned char>(text_[e]))) ++e;
+          if (e > pos + 1 && e < text_.size() && text_[e] == ']') pos = e + 1;
+        }
+        tokens_.push_back({T::Name, text_.substr(b, pos - b), range(b, pos)});
+      } else if (std::isdigit(static_cast<unsigned char>(c))) {
+        while (pos < text_.size() && std::isdigit(static_cast<unsigned char>(text_[pos]))) ++pos;
+        T kind = T::Int;
+        if (pos + 1 < text_.size() && text_[pos] == '.' && std::isdigit(static_cast<unsigned char>(text_[pos + 1]))) {
+          kind = T::Number;
+          ++pos;
+          while (pos < text_.size() && (std::isdigit(static_cast<unsigned char>(text_[pos])) || text_[pos] == 'e' ||
+                                        text_[pos] == '-' || text_[pos] == '+')) {
+            ++pos;
+          }
+        }
+        tokens_.push_back({kind, text_.substr(b, pos - b), range(b, pos)});
+      } else if (c == '"') {
+        ++pos;
+        while (pos < text_.size() && text_[pos] != '"' && text_[pos] != '\n') pos += text_[pos] == '\\' ? 2 : 1;
+        if (pos >= text_.size() || text_[pos] != '"') {
+          diags_.error(range(b, b + 1), "unterminated string");
+          pos = std::min(pos, text_.size());
+          continue;
+        }
+        ++pos;
+        tokens_.push_back({T::String, text_.substr(b + 1, pos - b - 2), range(b, pos)});
+      } else {
+        static const char* twoChar[] = {"->", "==", "!=", "<=", ">=", "&&", "||", "=>", ".."};
+        std::size_t length = 1;
+        for (const char* t : twoChar) {
+          if (text_.compare(pos, 2, t) == 0) length = 2;
+        }
+        if (length == 1 && std::string_view(":;,()'=<>+-*/%!?@[]").find(c) == std::string_view::npos) {
+          diags_.error(range(b, b + 1), std::string("unexpected character '") + c + "'");
+          ++pos;
+          continue;
+        }
+        pos += length;
+        tokens_.push_back({T::Punct, text_.substr(b, length), range(b, pos)});
+      }
+    }
+    tokens_.push_back({T::End, {}, range(pos, pos + 1)});
+  }
+
+  const Token& peek(std::size_t ahead = 0) const { return tokens_[std::min(pos_ + ahead, tokens_.size() - 1)]; }
+  const Token& advance() {
+    const Token& t = peek();
+    if (pos_ + 1 < tokens_.size()) ++pos_;
+    return t;
+  }
+  bool isPunct(std::string_view p) const { return peek().kind == T::Punct && peek().text == p; }
+  bool isWord(std::string_view w) const { return peek().kind == T::Name && peek().text == w; }
+  bool accept(std::string_view p) {
+    if (!isPunct(p)) return false;
+    advance();
+    return true;
+  }
+  [[noreturn]] void fail(const Token& at, const std::string& message) {
+    diags_.error(at.range, message);
+    throw Failure{};
+  }
+  std::string found() const {
+    return peek().kind == T::End ? "end of file" : "'" + std::string(peek().text) + "'";
+  }
+  void expect(std::string_view p, const std::string& context) {
+    if (!accept(p)) fail(peek(), "expected '" + std::string(p) + "' " + context + ", found " + found());
+  }
+  void expectWord(std::string_view w, const std::string& context) {
+    if (!isWord(w)) fail(peek(), "expected '" + std::string(w) + "' " + context + ", found " + found());
+    advance();
+  }
+  const Token& expectKind(T kind, const std::string& what) {
+    if (peek().kind != kind) fail(peek(), "expected " + what + ", found " + found());
+    return advance();
+  }
+  std::int32_t integer(const Token& t) {
+    std::int32_t v = 0;
+    auto [ptr, ec] = std::from_chars(t.text.data(), t.text.data() + t.text.size(), v);
+    if (ec != std::errc()) fail(t, "integer out of range");
+    return v;
+  }
+  std::int32_t signedInteger() {
+    bool negative = accept("-");
+    return negative ? -integer(expectKind(T::Int, "an integer")) : integer(expectKind(T::Int, "an integer"));
+  }
+
+  // ---- items
+  void item() {
+    if (isWord("robots")) {
+      advance();
+      while (peek().kind == T::Name) {
+        std::string name(advance().text);
+        robotIndex_[name] = static_cast<std::int32_t>(model_.robots.size());
+        model_.robots.push_back(name);
+      }
+      expect(";", "after the robot names");
+    } else if (isWord("assume")) {
+      advance();
+      model_.assumptions.push_back(unescape(expectKind(T::String, "a quoted assumption").text));
+      expect(";", "after the assumption");
+    } else if (isWord("var")) {
+      variable();
+    } else if (isWord("rule")) {
+      rule();
+    } else if (isWord("invariant")) {
+      advance();
+      Invariant inv;
+      inv.name = std::string(expectKind(T::Name, "an invariant name").text);
+      attributes([&](const Token& key, const std::string& value) {
+        if (key.text == "origin") return inv.origin = value, true;
+        return false;
+      });
+      expect(":", "after the invariant name");
+      inv.holds = expr();
+      expect(";", "after the invariant");
+      model_.invariants.push_back(std::move(inv));
+    } else if (isWord("valid_end")) {
+      const Token& at = advance();
+      if (model_.validEnd) fail(at, "valid_end is given twice");
+      expect(":", "after 'valid_end'");
+      model_.validEnd = expr();
+      expect(";", "after valid_end");
+    } else {
+      fail(peek(), "expected 'var', 'rule', 'invariant', 'valid_end', 'robots' or 'assume', found " + found());
+    }
+  }
+
+  static std::string unescape(std::string_view raw) {
+    std::string out;
+    for (std::size_t i = 0; i < raw.size(); ++i) {
+      if (raw[i] == '\\' && i + 1 < raw.size()) ++i;
+      out += raw[i];
+    }
+    return out;
+  }
+
+  // `@key`, `@key(value)`; `handle` returns false for an unknown key.
+  template <typename Handle>
+  void attributes(Handle handle) {
+    while (accept("@")) {
+      const Token& key = expectKind(T::Name, "an attribute name after '@'");
+      std::string value;
+      if (accept("(")) {
+        const Token& v = peek();
+        if (v.kind != T::Name && v.kind != T::String) fail(v, "expected a name or a string in the attribute, found " + found());
+        value = v.kind == T::String ? unescape(advance().text) : std::string(advance().text);
+        expect(")", "to close the attribute");
+      }
+      if (!handle(key, value)) fail(key, "unknown attribute '@" + std::string(key.text) + "' here");
+    }
+  }
+
+  std::int32_t robot(const Token& key, const std::string& name) {
+    auto it = robotIndex_.find(name);
+    if (it == robotIndex_.end()) fail(key, "unknown robot '" + name + "' (declare it with 'robots ...;')");
+    return it->second;
+  }
+
+  void declare(Variable v, const Token& at) {
+    if (varIndex_.count(v.name) != 0) fail(at, "variable '" + v.name + "' is declared twice");
+    varIndex_[v.name] = static_cast<VarId>(model_.variables.size());
+    model_.variables.push_back(std::move(v));
+  }
+
+  void variable() {
+    advance();
+    const Token& nameToken = expectKind(T::Name, "a variable name");
+    std::string name(nameToken.text);
+    std::int32_t arraySize = 0;
+    if (auto open = name.find('['); open != std::string::npos) {
+      arraySize = std::atoi(name.c_str() + open + 1);
+      name.resize(open);
+      if (arraySize < 1) fail(nameToken, "an array needs at least one element");
+    }
+    expect(":", "after the variable name");
+    Variable v;
+    v.name = name;
+    if (isWord("bool")) {
+      advance();
+      v.isBool = true;
+    } else {
+      v.min = signedInteger();
+      expect("..", "in the range 'min..max'");
+      v.max = signedInteger();
+      if (v.max < v.min) fail(nameToken, "empty range: max is below min");
+    }
+    v.init = v.min;
+    if (accept("=")) {
+      if (isWord("true") || isWord("false")) {
+        v.init = advance().text == "true" ? 1 : 0;
+      } else {
+        v.init = signedInteger();
+      }
+    }
+    if (v.init < v.min || v.init > v.max) fail(nameToken, "initial value " + std::to_string(v.init) + " is outside the range");
+    attributes([&](const Token& key, const std::string& value) {
+      if (key.text == "robot") return v.robot = robot(key, value), true;
+      if (key.text == "values") {
+        std::string word;
+        for (char c : value + " ") {
+          if (c != ' ') {
+            word += c;
+          } else if (!word.empty()) {
+            v.valueNames.push_back(std::move(word));
+            word.clear();
+          }
+        }
+        return true;
+      }
+      return false;
+    });
+    expect(";", "after the variable declaration");
+    if (arraySize == 0) return declare(std::move(v), nameToken);
+    for (std::int32_t i = 0; i < arraySize; ++i) {
+      Variable element = v;
+      element.name = name + "[" + std::to_string(i) + "]";
+      declare(std::move(element), nameToken);
+    }
+  }
+
+  void rule() {
+    advance();
+    Rule r;
+    r.name = std::string(expectKind(T::Name, "a rule name").text);
+    attributes([&](const Token& key, const std::string& value) {
+      if (key.text == "robot") return r.robot = robot(key, value), true;
+      if (key.text == "origin") return r.origin = value, true;
+      if (key.text == "label") return r.label = value, true;
+      if (key.text == "fair") return r.weaklyFair = true, true;
+      if (key.text == "kind") {
+        auto kind = kindFromName(value);
+        if (!kind) fail(key, "unknown rule kind '" + value + "' (step, delivery, loss, crash, environment, timer)");
+        r.kind = *kind;
+        return true;
+      }
+      return false;
+    });
+    expect(":", "after the rule name");
+    r.guard = expr();
+    expect("->", "after the guard");
+    double total = 0;
+    do {
+      Branch b;
+      if (peek().kind == T::Number || (peek().kind == T::Int && peek(1).kind == T::Punct && peek(1).text == ":")) {
+        const Token& p = advance();
+        b.probability = std::strtod(std::string(p.text).c_str(), nullptr);
+        if (!(b.probability > 0 && b.probability <= 1)) fail(p, "a probability must be in (0, 1]");
+        expect(":", "after the probability");
+      }
+      total += b.probability;
+      if (isWord("skip")) {
+        advance();
+      } else {
+        do {
+          const Token& target = expectKind(T::Name, "an assignment 'x' = ...'");
+          auto it = varIndex_.find(std::string(target.text));
+          if (it == varIndex_.end()) fail(target, "undeclared variable '" + std::string(target.text) + "'");
+          for (const Assignment& a : b.assignments) {
+            if (a.var == it->second) fail(target, "variable '" + std::string(target.text) + "' is assigned twice in one branch");
+          }
+          expect("'", "after the assigned variable (write x' = ...)");
+          expect("=", "in the assignment");
+          b.assignments.push_back({it->second, expr()});
+        } while (accept(","));
+      }
+      r.branches.push_back(std::move(b));
+    } while (accept("+"));
+    if (r.branches.size() > 1 && std::fabs(total - 1.0) > 1e-9) {
+      fail(peek(), "the probabilities of rule '" + r.name + "' add up to " + std::to_string(total) + ", not 1");
+    }
+    expect(";", "after the rule");
+    model_.rules.push_back(std::move(r));
+  }
+
+  // ---- expressions, loosest first: ?:  =>  ||  &&  == !=  < <= > >=  + -  * / %  unary
+  Expr expr() {
+    Expr c = implication();
+    if (!accept("?")) return c;
+    Expr t = expr();
+    expect(":", "in 'c ? a : b'");
+    Expr e = expr();
+    return Expr::ite(std::move(c), std::move(t), std::move(e));
+  }
+  Expr implication() {
+    Expr l = binary(0);
+    if (!accept("=>")) return l;
+    return Expr::binary(Op::Implies, std::move(l), implication());
+  }
+  Expr binary(int level) {
+    static const std::vector<std::vector<std::pair<const char*, Op>>> levels{
+        {{"||", Op::Or}},
+        {{"&&", Op::And}},
+        {{"==", Op::Eq}, {"!=", Op::Ne}},
+        {{"<=", Op::Le}, {">=", Op::Ge}, {"<", Op::Lt}, {">", Op::Gt}},
+        {{"+", Op::Add}, {"-", Op::Sub}},
+        {{"*", Op::Mul}, {"/", Op::Div}, {"%", Op::Mod}}};
+    if (level == static_cast<int>(levels.size())) return unary();
+    Expr left = binary(level + 1);
+    while (true) {
+      bool matched = false;
+      for (const auto& [spelling, op] : levels[static_cast<std::size_t>(level)]) {
+        if (!isPunct(spelling)) continue;
+        advance();
+        left = Expr::binary(op, std::move(left), binary(level + 1));
+        matched = true;
+        break;
+      }
+      if (!matched) return left;
+    }
+  }
+  Expr unary() {
+    if (accept("!")) return Expr::unary(Op::Not, unary());
+    if (accept("-")) return Expr::unary(Op::Neg, unary());
+    if (accept("(")) {
+      Expr e = expr();
+      expect(")", "to close the parenthesis");
+      return e;
+    }
+    const Token& t = peek();
+    if (t.kind == T::Int) return Expr::constant(integer(advance()));
+    if (t.kind != T::Name) fail(t, "expected an expression, found " + found());
+    advance();
+    if (t.text == "true" || t.text == "false") return Expr::constant(t.text == "true" ? 1 : 0);
+    if ((t.text == "min" || t.text == "max") && accept("(")) {
+      Expr a = expr();
+      expect(",", "between the arguments");
+      Expr b = expr();
+      expect(")", "to close the call");
+      return Expr::binary(t.text == "min" ? Op::Min : Op::Max, std::move(a), std::move(b));
+    }
+    auto it = varIndex_.find(std::string(t.text));
+    if (it == varIndex_.end()) fail(t, "undeclared variable '" + std::string(t.text) + "'");
+    return Expr::var(it->second);
+  }
+
+  std::string_view text_;
+  FileId file_;
+  DiagnosticEngine& diags_;
+  std::vector<Token> tokens_;
+  std::size_t pos_ = 0;
+  Model model_;
+  std::unordered_map<std::string, VarId> varIndex_;
+  std::unordered_map<std::string, std::int32_t> robotIndex_;
+};
+
+}  // namespace
+
+std::optional<Model> parseText(const SourceManager& sources, FileId file, DiagnosticEngine& diags) {
+  return Reader(sources, file, diags).run();
+}
+
+}  // namespace semo::ir

@@ -1,0 +1,434 @@
+// MissionModel -> IR (specs/semantics.md). Variables first, then one group of rules per concern:
+// robots' programs, event delivery, message delivery, crashes, re-election, mode defaults.
+#include "semo/semantics/translate.hpp"
+
+#include <algorithm>
+
+#include "translator.hpp"
+
+namespace semo::detail {
+
+
+std::string Translator::origin(const SourceRange& r) const {
+  if (!r.begin.valid() || r.begin.file >= sources_.fileCount()) return "";
+  return sources_.path(r.begin.file) + ":" + std::to_string(r.begin.line) + ":" + std::to_string(r.begin.column);
+}
+
+std::int32_t Translator::crashBudget(Index team) const {
+  if (options_.crashOverride) {
+    return std::min<std::int32_t>(*options_.crashOverride, static_cast<std::int32_t>(m_.teams[team].robots.size()));
+  }
+  return static_cast<std::int32_t>(m_.assumptions.crashBudget[team]);
+}
+
+void Translator::assumptions() {
+  losePublish_ = m_.assumptions.losePublish;
+  loseEvents_ = m_.assumptions.loseEvents;
+  if (options_.lossOverride) {
+    const std::string& k = *options_.lossOverride;
+    losePublish_ = k == "publish" || k == "all";
+    loseEvents_ = k == "events" || k == "all";
+  }
+  for (Index t = 0; t < m_.teams.size(); ++t) {
+    if (crashBudget(t) > 0) out_.assumptions.push_back("crash <= " + std::to_string(crashBudget(t)) + " in " + m_.teams[t].name);
+  }
+  if (out_.assumptions.empty()) out_.assumptions.push_back("no crash");
+  std::string loss;
+  if (losePublish_) loss += "publish";
+  if (loseEvents_) loss += std::string(loss.empty() ? "" : ", ") + "events";
+  out_.assumptions.push_back("loss: " + (loss.empty() ? std::string("none") : loss));
+  out_.assumptions.push_back("timing: any (asynchronous interleaving)");
+}
+
+ir::VarId Translator::addVar(std::string name, std::int32_t min, std::int32_t max, std::int32_t init, std::int32_t robot,
+                             std::vector<std::string> valueNames) {
+  ir::Variable v;
+  v.name = std::move(name);
+  v.min = min;
+  v.max = max;
+  v.init = init;
+  v.isBool = min == 0 && max == 1 && valueNames.empty();
+  v.robot = robot;
+  v.valueNames = std::move(valueNames);
+  out_.variables.push_back(std::move(v));
+  return static_cast<ir::VarId>(out_.variables.size() - 1);
+}
+
+Expr Translator::alive(Index robot) const {
+  return vars_[robot].alive ? Expr::var(*vars_[robot].alive) : Expr::constant(1);
+}
+
+bool Translator::topicRead(Index team, Index topic) const {
+  // A robot keeps a view of a topic only if its team's conditions read it (others cannot tell).
+  std::vector<const std::vector<model::Stmt>*> bodies;
+  for (Index s : m_.teams[team].services) bodies.push_back(&m_.services[s].body);
+  std::function<bool(const model::Cond&)> reads = [&](const model::Cond& c) {
+    for (const model::Expr* e : {&c.lhs, &c.rhs}) {
+      if (e->kind == model::Expr::Kind::Value && e->valueKind == model::ValueKind::Topic && e->topic == topic) return true;
+    }
+    return (c.left && reads(*c.left)) || (c.right && reads(*c.right));
+  };
+  for (Index s : m_.teams[team].services) {
+    if (m_.services[s].repeat && m_.services[s].repeat->cond && reads(*m_.services[s].repeat->cond)) return true;
+  }
+  while (!bodies.empty()) {
+    const std::vector<model::Stmt>* body = bodies.back();
+    bodies.pop_back();
+    for (const model::Stmt& s : *body) {
+      if (s.cond && reads(*s.cond)) return true;
+      bodies.push_back(&s.thenBody);
+      bodies.push_back(&s.elseBody);
+      if (s.kind == model::Stmt::Kind::Groups) {
+        for (const model::GroupArm& arm : m_.groupBlocks[s.groupBlock].arms) bodies.push_back(&arm.body);
+      }
+    }
+  }
+  return false;
+}
+
+void Translator::variables() {
+  out_.robots.reserve(m_.robots.size());
+  for (const model::Robot& r : m_.robots) out_.robots.push_back(r.name);
+  programs_.resize(m_.teams.size());
+  crashed_.resize(m_.teams.size());
+  vars_.resize(m_.robots.size());
+  for (Index t = 0; t < m_.teams.size(); ++t) {
+    const model::Team& team = m_.teams[t];
+    for (const std::string& plan : team.plans) programs_[t].push_back(detail::buildProgram(m_, t, plan));
+    if (crashBudget(t) > 0) crashed_[t] = addVar(team.name + ".crashed", 0, crashBudget(t), 0, ir::kNoRobot);
+    std::vector<std::string> modeNames;
+    for (Index md : team.modes) modeNames.push_back(m_.modes[md].name);
+    for (Index r : team.robots) {
+      auto robot = static_cast<std::int32_t>(r);
+      const std::string& name = m_.robots[r].name;
+      RobotVars& v = vars_[r];
+      if (crashBudget(t) > 0) v.alive = addVar(name + ".alive", 0, 1, 1, robot);
+      Index initial = team.initialMode;
+      if (team.modes.size() > 1 && initial != model::kNone) {
+        auto initialIndex = static_cast<std::int32_t>(std::find(team.modes.begin(), team.modes.end(), initial) - team.modes.begin());
+        v.mode = addVar(name + ".mode", 0, static_cast<std::int32_t>(team.modes.size()) - 1, initialIndex, robot, modeNames);
+      }
+      for (std::size_t p = 0; p < team.plans.size(); ++p) {
+        const PlanProgram& prog = programs_[t][p];
+        std::size_t entry = 0;
+        if (initial != model::kNone) {
+          for (const model::PlanSetting& s : m_.modes[initial].settings) {
+            if (s.plan == p) entry = prog.entryOf[s.service];
+          }
+        }
+        if (prog.code.size() == 1) {
+          v.pc.emplace_back();
+          continue;
+        }
+        std::vector<std::string> labels;
+        for (std::size_t i = 0; i < prog.code.size(); ++i) {
+          const Instr& in = prog.code[i];
+          labels.push_back(i == 0 ? "done" : m_.services[in.service].name + "#" + std::to_string(i));
+        }
+        v.pc.push_back(addVar(name + ".pc." + team.plans[p], 0, static_cast<std::int32_t>(prog.code.size()) - 1,
+                              static_cast<std::int32_t>(entry), robot, std::move(labels)));
+      }
+      for (Index e = 0; e < team.events.size(); ++e) {
+        if (!team.events[e].thrownAt.empty() && !team.events[e].caughtAt.empty() && team.robots.size() > 1) {
+          v.event[e] = addVar(name + ".ev." + team.events[e].name, 0, 1, 0, robot);
+        }
+      }
+    }
+  }
+  for (Index tp = 0; tp < m_.topics.size(); ++tp) {
+    const model::Topic& topic = m_.topics[tp];
+    std::string topicName = m_.teams[topic.owner].name + "." + topic.var;
+    if (topic.reliable) {
+      channel_[tp] = addVar("ch." + topicName, 0, static_cast<std::int32_t>(topic.buffer) + 1, 0, ir::kNoRobot);
+      continue;
+    }
+    std::vector<std::string> names{"none"};
+    for (const std::string& s : topic.symbols) names.push_back(s);
+    if (names.size() == 1) names.push_back("some");
+    for (Index t = 0; t < m_.teams.size(); ++t) {
+      if (!topicRead(t, tp)) continue;
+      for (Index r : m_.teams[t].robots) {
+        auto robot = static_cast<std::int32_t>(r);
+        auto top = static_cast<std::int32_t>(names.size()) - 1;
+        vars_[r].view[tp] = addVar(m_.robots[r].name + ".view." + topicName, 0, top, 0, robot, names);
+        vars_[r].msg[tp] = addVar(m_.robots[r].name + ".msg." + topicName, 0, top, 0, robot, names);
+      }
+    }
+  }
+  for (Index b = 0; b < m_.groupBlocks.size(); ++b) {
+    if (!m_.groupBlocks[b].isLeaderBlock) continue;
+    const model::GroupBlock& block = m_.groupBlocks[b];
+    std::vector<std::string> names;
+    for (const model::Robot& r : m_.robots) names.push_back(r.name);
+    names.push_back("none");
+    auto none = static_cast<std::int32_t>(m_.robots.size());
+    leader_[b] = addVar("leader." + m_.services[block.service].name + "." + std::to_string(b), 0, none, none, ir::kNoRobot,
+                        std::move(names));
+  }
+}
+
+std::vector<Index> Translator::modesRunning(Index team, std::size_t planIndex, Index service) const {
+  std::vector<Index> modes;
+  for (Index md : m_.teams[team].modes) {
+    for (const model::PlanSetting& s : m_.modes[md].settings) {
+      if (s.plan == planIndex && s.service == service) modes.push_back(md);
+    }
+  }
+  return modes;
+}
+
+std::vector<ir::Assignment> Translator::enterMode(Index robot, Index mode) const {
+  Index team = m_.robots[robot].team;
+  std::vector<ir::Assignment> out;
+  const RobotVars& v = vars_[robot];
+  if (v.mode) {
+    const std::vector<Index>& modes = m_.teams[team].modes;
+    auto index = static_cast<std::int32_t>(std::find(modes.begin(), modes.end(), mode) - modes.begin());
+    out.push_back({*v.mode, Expr::constant(index)});
+  }
+  for (std::size_t p = 0; p < v.pc.size(); ++p) {
+    if (!v.pc[p]) continue;
+    std::size_t entry = 0;
+    for (const model::PlanSetting& s : m_.modes[mode].settings) {
+      if (s.plan == p) entry = programs_[team][p].entryOf[s.service];
+    }
+    out.push_back({*v.pc[p], Expr::constant(static_cast<std::int32_t>(entry))});
+  }
+  return out;
+}
+
+std::int32_t Translator::symbolValue(Index topic, const model::Expr& e) const {
+  const std::vector<std::string>& symbols = m_.topics[topic].symbols;
+  std::string text = e.kind == model::Expr::Kind::Bool ? (e.intValue != 0 ? "true" : "false") : e.text;
+  if (e.kind == model::Expr::Kind::Symbol || e.kind == model::Expr::Kind::String || e.kind == model::Expr::Kind::Bool) {
+    auto it = std::find(symbols.begin(), symbols.end(), text);
+    if (it != symbols.end()) return static_cast<std::int32_t>(it - symbols.begin()) + 1;
+  }
+  return symbols.empty() ? 1 : -1;  // -1: a value the topic never carries
+}
+
+// The condition as an IR expression over the robot's own state, or nullopt when it reads the
+// environment (sensed values, knowledge): then both outcomes are possible.
+std::optional<Expr> Translator::condition(Index robot, const model::Cond& c) const {
+  using K = model::Cond::Kind;
+  switch (c.kind) {
+    case K::Not: {
+      auto a = condition(robot, *c.left);
+      return a ? std::optional<Expr>(lnot(std::move(*a))) : std::nullopt;
+    }
+    case K::And:
+    case K::Or: {
+      auto a = condition(robot, *c.left), b = condition(robot, *c.right);
+      if (!a || !b) return std::nullopt;
+      return Expr::binary(c.kind == K::And ? Op::And : Op::Or, std::move(*a), std::move(*b));
+    }
+    case K::Test:
+      if (c.lhs.kind == model::Expr::Kind::Bool) return Expr::constant(static_cast<std::int32_t>(c.lhs.intValue));
+      return std::nullopt;
+    case K::Compare: break;
+  }
+  const model::Expr* value = c.lhs.kind == model::Expr::Kind::Value ? &c.lhs : c.rhs.kind == model::Expr::Kind::Value ? &c.rhs : nullptr;
+  const model::Expr* constant = value == &c.lhs ? &c.rhs : &c.lhs;
+  if (value == nullptr || value->valueKind != model::ValueKind::Topic || constant->kind == model::Expr::Kind::Value) {
+    return std::nullopt;
+  }
+  auto view = vars_[robot].view.find(value->topic);
+  if (view == vars_[robot].view.end()) return std::nullopt;
+  std::int32_t symbol = symbolValue(value->topic, *constant);
+  if (symbol < 0 || m_.topics[value->topic].symbols.empty()) return std::nullopt;
+  Expr test = eq(Expr::var(view->second), symbol);
+  if (c.op == model::RelOp::Eq) return test;
+  if (c.op == model::RelOp::Ne) return lnot(std::move(test));
+  return std::nullopt;  // ordering symbols means nothing
+}
+
+void Translator::programRules(Index robot, std::size_t planIndex) {
+  const PlanProgram& prog = programs_[m_.robots[robot].team][planIndex];
+  for (std::size_t i = 1; i < prog.code.size(); ++i) {
+    if (prog.code[i].controlPoint) walk(robot, planIndex, i, Path{}, i, 0);
+  }
+}
+
+void Translator::finish(Index robot, std::size_t planIndex, std::size_t start, std::size_t target, Path path) {
+  const RobotVars& v = vars_[robot];
+  ir::Rule rule;
+  rule.robot = static_cast<std::int32_t>(robot);
+  rule.kind = ir::RuleKind::Step;
+  const PlanProgram& prog = programs_[m_.robots[robot].team][planIndex];
+  rule.name = m_.robots[robot].name + "." + prog.plan + "." + std::to_string(start) + "." + std::to_string(++rulesPerPoint_);
+  const Instr& first = prog.code[start];
+  if (first.stmt != nullptr) rule.origin = origin(first.stmt->at);
+  std::vector<Expr> guard{alive(robot), eq(Expr::var(*v.pc[planIndex]), static_cast<std::int32_t>(start))};
+  for (Expr& g : path.guard) guard.push_back(std::move(g));
+  rule.guard = ir::conjunction(std::move(guard));
+  ir::Branch branch;
+  branch.assignments = std::move(path.updates);
+  if (!path.changesMode && target != start) {
+    branch.assignments.push_back({*v.pc[planIndex], Expr::constant(static_cast<std::int32_t>(target))});
+  }
+  if (branch.assignments.empty() && path.words.empty()) return;  // an idle loop changes nothing: no rule needed
+  rule.branches.push_back(std::move(branch));
+  std::string label;
+  for (const std::string& w : path.words) label += (label.empty() ? "" : ", ") + w;
+  rule.label = label.empty() ? "continues " + m_.services[first.service].name : label;
+  rule.weaklyFair = true;
+  addRule(std::move(rule));
+}
+
+void Translator::walk(Index robot, std::size_t planIndex, std::size_t at, Path path, std::size_t start, int depth) {
+  const PlanProgram& prog = programs_[m_.robots[robot].team][planIndex];
+  const Instr& in = prog.code[at];
+  if (depth > 0 && in.controlPoint) return finish(robot, planIndex, start, at, std::move(path));
+  if (depth > 10000) return;  // cannot happen: every cycle holds a control point
+  switch (in.kind) {
+    case Instr::Kind::Done:
+      return finish(robot, planIndex, start, 0, std::move(path));
+    case Instr::Kind::Local:
+    case Instr::Kind::Jump:
+      if (!in.label.empty() && in.kind == Instr::Kind::Local) path.words.push_back(in.label);
+      return walk(robot, planIndex, in.next, std::move(path), start, depth + 1);
+    case Instr::Kind::Branch:
+    case Instr::Kind::RepeatBranch: {
+      std::optional<Expr> c = condition(robot, *in.cond);
+      Path yes = path, no = std::move(path);
+      if (c) {
+        yes.guard.push_back(*c);
+        no.guard.push_back(lnot(std::move(*c)));
+      } else {
+        yes.words.push_back(in.kind == Instr::Kind::Branch ? "senses: condition holds" : "senses: repeat");
+        no.words.push_back(in.kind == Instr::Kind::Branch ? "senses: condition fails" : "senses: stop repeating");
+      }
+      bool repeat = in.kind == Instr::Kind::RepeatBranch;
+      walk(robot, planIndex, repeat ? in.alt : in.next, std::move(yes), start, depth + 1);
+      walk(robot, planIndex, repeat ? in.next : in.alt, std::move(no), start, depth + 1);
+      return;
+    }
+    case Instr::Kind::Groups: {
+      const model::GroupBlock& block = m_.groupBlocks[in.block];
+      if (block.isLeaderBlock) {
+        ir::VarId leader = leader_.at(in.block);
+        Expr elected = electedLeader(in.block);
+        std::size_t leaderArm = in.next, othersArm = in.next;
+        for (std::size_t a = 0; a < block.arms.size(); ++a) {
+          if (block.arms[a].kind == model::GroupArm::Kind::Leader) leaderArm = in.arms[a];
+          if (block.arms[a].kind == model::GroupArm::Kind::Others) othersArm = in.arms[a];
+        }
+        bool candidate = false;
+        for (const model::GroupArm& arm : block.arms) {
+          if (arm.kind == model::GroupArm::Kind::Leader) {
+            candidate = std::find(arm.candidates.begin(), arm.candidates.end(), robot) != arm.candidates.end();
+          }
+        }
+        if (candidate) {
+          Path lead = path;
+          lead.guard.push_back(eq(elected, static_cast<std::int32_t>(robot)));
+          lead.updates.push_back({leader, Expr::constant(static_cast<std::int32_t>(robot))});
+          lead.words.push_back("is elected leader");
+          finish(robot, planIndex, start, leaderArm, std::move(lead));
+          path.guard.push_back(lnot(eq(elected, static_cast<std::int32_t>(robot))));
+        }
+        path.updates.push_back({leader, std::move(elected)});
+        path.words.push_back("follows the elected leader");
+        return finish(robot, planIndex, start, othersArm, std::move(path));
+      }
+      bool any = false;
+      for (std::size_t a = 0; a < block.arms.size(); ++a) {
+        const model::GroupArm& arm = block.arms[a];
+        if (std::find(arm.candidates.begin(), arm.candidates.end(), robot) == arm.candidates.end()) continue;
+        any = true;
+        Path take = path;
+        std::string what = arm.kind == model::GroupArm::Kind::Others ? "others" : "group (" + arm.names.front() + (arm.names.size() > 1 ? ", ..." : "") + ")";
+        take.words.push_back("joins " + what);
+        finish(robot, planIndex, start, in.arms[a], std::move(take));
+      }
+      if (!any) {
+        path.words.push_back("takes no group");
+        finish(robot, planIndex, start, in.next, std::move(path));
+      }
+      return;
+    }
+    default: {
+      std::vector<Path> outcomes;
+      effect(robot, planIndex, in, path, outcomes);
+      for (Path& p : outcomes) {
+        if (p.changesMode) {
+          finish(robot, planIndex, start, start, std::move(p));
+        } else {
+          finish(robot, planIndex, start, in.next, std::move(p));
+        }
+      }
+    }
+  }
+}
+
+void Translator::effect(Index robot, std::size_t planIndex, const Instr& in, Path& path, std::vector<Path>& out) {
+  const model::Stmt& s = *in.stmt;
+  Index team = m_.robots[robot].team;
+  switch (in.kind) {
+    case Instr::Kind::Throw: {
+      const model::Event& event = m_.teams[team].events[s.event];
+      for (Index q : m_.teams[team].robots) {
+        auto it = vars_[q].event.find(s.event);
+        if (q == robot || it == vars_[q].event.end()) continue;
+        path.updates.push_back({it->second, Expr::ite(alive(q), Expr::constant(1), Expr::var(it->second))});
+      }
+      // The thrower's own copy: it reacts at once, in whichever mode it is running this code.
+      std::vector<Index> modes = modesRunning(team, planIndex, in.service);
+      for (Index md : modes) {
+        Path p = path;
+        if (vars_[robot].mode && modes.size() > 1) {
+          const std::vector<Index>& all = m_.teams[team].modes;
+          p.guard.push_back(eq(Expr::var(*vars_[robot].mode), static_cast<std::int32_t>(std::find(all.begin(), all.end(), md) - all.begin())));
+        }
+        p.words.push_back("throws " + event.name);
+        for (const model::Transition& tr : m_.modes[md].transitions) {
+          if (tr.isDefault || tr.event != s.event) continue;
+          for (ir::Assignment& a : enterMode(robot, tr.target)) p.updates.push_back(std::move(a));
+          p.words.push_back("mode " + m_.modes[tr.target].name);
+          p.changesMode = true;
+        }
+        out.push_back(std::move(p));
+        if (!vars_[robot].mode || modes.size() == 1) break;
+      }
+      return;
+    }
+    case Instr::Kind::Publish: {
+      Index tp = s.topic;
+      if (tp == model::kNone) return out.push_back(std::move(path));
+      std::int32_t value = symbolValue(tp, s.value);
+      if (value < 0) value = 1;
+      for (Index q : m_.teams[s.peerTeam].robots) {
+        auto msg = vars_[q].msg.find(tp);
+        if (msg == vars_[q].msg.end()) continue;
+        if (q == robot) {
+          path.updates.push_back({vars_[q].view.at(tp), Expr::constant(value)});
+        } else {
+          path.updates.push_back({msg->second, Expr::ite(alive(q), Expr::constant(value), Expr::var(msg->second))});
+        }
+      }
+      path.words.push_back("publishes " + m_.teams[m_.topics[tp].owner].name + "." + m_.topics[tp].var);
+      return out.push_back(std::move(path));
+    }
+    case Instr::Kind::Send: {
+      if (s.topic == model::kNone) return out.push_back(std::move(path));
+      ir::VarId ch = channel_.at(s.topic);
+      // Stops one past the capacity: buffer_bounds reports the overflow there.
+      path.guard.push_back(Expr::binary(Op::Le, Expr::var(ch), Expr::constant(static_cast<std::int32_t>(m_.topics[s.topic].buffer))));
+      path.updates.push_back({ch, Expr::binary(Op::Add, Expr::var(ch), Expr::constant(1))});
+      path.words.push_back("sends " + m_.topics[s.topic].var);
+      return out.push_back(std::move(path));
+    }
+    case Instr::Kind::Receive: {
+      if (s.topic == model::kNone) return out.push_back(std::move(path));
+      ir::VarId ch = channel_.at(s.topic);
+      path.guard.push_back(Expr::binary(Op::Gt, Expr::var(ch), Expr::constant(0)));
+      path.updates.push_back({ch, Expr::binary(Op::Sub, Expr::var(ch), Expr::constant(1))});
+      path.words.push_back("receives " + m_.topics[s.topic].var);
+      return out.push_back(std::move(path));
+    }
+    default:
+      out.push_back(std::move(path));
+  }
+}
+
+}  // namespace semo::detail

@@ -1,0 +1,88 @@
+#pragma once
+// The translator from MissionModel to IR, shared by translate.cpp (variables and robot programs)
+// and translate_network.cpp (events, messages, crashes, leaders, modes, properties).
+#include <functional>
+#include <map>
+#include <optional>
+
+#include "semo/semantics/translate.hpp"
+#include "translate_program.hpp"
+
+namespace semo::detail {
+
+using ir::Expr;
+using ir::Op;
+
+inline Expr eq(Expr a, std::int32_t v) { return Expr::binary(Op::Eq, std::move(a), Expr::constant(v)); }
+inline Expr lnot(Expr a) { return Expr::unary(Op::Not, std::move(a)); }
+
+class Translator {
+ public:
+  Translator(const model::MissionModel& m, const TranslationOptions& o, const SourceManager& sources, DiagnosticEngine& diags)
+      : m_(m), options_(o), sources_(sources), diags_(diags) {}
+
+  std::optional<ir::Model> run();
+
+ private:
+  struct RobotVars {
+    std::optional<ir::VarId> alive, mode;
+    std::vector<std::optional<ir::VarId>> pc;  // per plan of the team
+    std::map<Index, ir::VarId> event;          // per event index of the team
+    std::map<Index, ir::VarId> view, msg;      // per topic
+  };
+
+  // A rule under construction while walking from a control point.
+  struct Path {
+    std::vector<Expr> guard;
+    std::vector<ir::Assignment> updates;
+    std::vector<std::string> words;
+    bool changesMode = false;
+  };
+
+  void assumptions();
+  void variables();
+  void programRules(Index robot, std::size_t planIndex);
+  void walk(Index robot, std::size_t planIndex, std::size_t at, Path path, std::size_t start, int depth);
+  void finish(Index robot, std::size_t planIndex, std::size_t start, std::size_t target, Path path);
+  void effect(Index robot, std::size_t planIndex, const Instr& in, Path& path, std::vector<Path>& out);
+  void eventRules();
+  void messageRules();
+  void crashRules();
+  void leaderRules();
+  void defaultRules();
+  void invariants();
+  [[nodiscard]] std::optional<Expr> stateFormula(const model::Ltl& f) const;
+
+  ir::VarId addVar(std::string name, std::int32_t min, std::int32_t max, std::int32_t init, std::int32_t robot,
+                   std::vector<std::string> valueNames = {});
+  [[nodiscard]] Expr alive(Index robot) const;
+  [[nodiscard]] std::optional<Expr> condition(Index robot, const model::Cond& c) const;
+  [[nodiscard]] std::optional<Expr> operand(Index robot, const model::Expr& e) const;
+  [[nodiscard]] std::int32_t symbolValue(Index topic, const model::Expr& e) const;
+  [[nodiscard]] std::vector<ir::Assignment> enterMode(Index robot, Index mode) const;
+  [[nodiscard]] std::vector<Index> modesRunning(Index team, std::size_t planIndex, Index service) const;
+  [[nodiscard]] std::string origin(const SourceRange& r) const;
+  [[nodiscard]] bool topicRead(Index team, Index topic) const;
+  [[nodiscard]] std::int32_t crashBudget(Index team) const;
+  [[nodiscard]] Expr electedLeader(Index block) const;
+  [[nodiscard]] Expr bestCandidate(Index block) const;
+  void addRule(ir::Rule rule) { out_.rules.push_back(std::move(rule)); }
+  [[nodiscard]] bool wants(const std::string& check) const {
+    return std::find(m_.assumptions.checks.begin(), m_.assumptions.checks.end(), check) != m_.assumptions.checks.end();
+  }
+
+  const model::MissionModel& m_;
+  const TranslationOptions& options_;
+  const SourceManager& sources_;
+  DiagnosticEngine& diags_;
+  ir::Model out_;
+  std::vector<RobotVars> vars_;
+  std::vector<std::vector<PlanProgram>> programs_;  // per team, per plan
+  std::vector<std::optional<ir::VarId>> crashed_;   // per team
+  std::map<Index, ir::VarId> channel_;              // per reliable topic
+  std::map<Index, ir::VarId> leader_;               // per leader block
+  bool losePublish_ = false, loseEvents_ = false;
+  std::size_t rulesPerPoint_ = 0;
+};
+
+}  // namespace semo::detail

@@ -1,0 +1,143 @@
+// `check` and `export`: build (or read) the IR, then search it or write it out.
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "semo/checker/explicit_search.hpp"
+#include "semo/checker/promela_export.hpp"
+#include "semo/semantics/ir_text.hpp"
+#include "semo/semantics/load.hpp"
+#include "semo/semantics/translate.hpp"
+
+namespace semo::cli {
+
+namespace {
+
+bool isIrFile(const std::string& path) { return std::filesystem::path(path).extension() == ".ir"; }
+
+// Reads an IR file, or loads a mission and translates it. Diagnostics are printed; nullopt on error.
+std::optional<ir::Model> buildModel(const ModelInput& in) {
+  SourceManager sources;
+  DiagnosticEngine diags(sources);
+  std::optional<ir::Model> model;
+  if (isIrFile(in.input)) {
+    std::string why;
+    FileId file = sources.load(in.input, why);
+    if (file == kNoFile) {
+      diags.error({}, why);
+    } else {
+      model = ir::parseText(sources, file, diags);
+    }
+    if (in.crash || in.loss) diags.error({}, "--crash and --loss apply to missions; an IR file states its own assumptions");
+  } else if (!in.strategy) {
+    diags.error({}, "checking a mission needs --strategy (or give an .ir file)");
+  } else if (auto mission = loadMission({in.input, *in.strategy, in.robotsDir}, sources, diags)) {
+    TranslationOptions options;
+    options.crashOverride = in.crash;
+    options.lossOverride = in.loss;
+    model = translate(*mission, options, sources, diags);
+  }
+  diags.sortByPosition();
+  diags.print(std::cerr);
+  if (diags.hasErrors()) return std::nullopt;
+  return model;
+}
+
+std::string assumptionsLine(const ir::Model& m) {
+  std::string out;
+  for (const std::string& a : m.assumptions) out += (out.empty() ? "" : "; ") + a;
+  return out.empty() ? "none stated" : out;
+}
+
+// Writes through a temporary file and renames it, so that a failure never leaves half a file.
+bool writeAtomically(const std::string& path, const std::string& text) {
+  std::string temporary = path + ".partial";
+  {
+    std::ofstream out(temporary, std::ios::binary);
+    out << text;
+    if (!out) {
+      std::filesystem::remove(temporary);
+      return false;
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(temporary, path, ec);
+  if (ec) std::filesystem::remove(temporary);
+  return !ec;
+}
+
+}  // namespace
+
+int runCheck(const CheckOptions& options) {
+  std::optional<ir::Model> model = buildModel(options.model);
+  if (!model) return kBadInput;
+  checker::SearchLimits limits;
+  limits.maxStates = options.maxStates;
+  limits.maxMemoryBytes = options.maxMemoryMiB << 20;
+  checker::SearchResult r = checker::checkSafety(*model, limits);
+
+  bool violated = r.rangeError.has_value();
+  for (const checker::PropertyResult& p : r.properties) violated = violated || p.verdict == checker::Verdict::Violated;
+  int code = violated ? kViolated : r.complete ? kOk : kLimit;
+
+  if (options.json) {
+    nlohmann::json props = nlohmann::json::array();
+    for (const checker::PropertyResult& p : r.properties) {
+      nlohmann::json jp = {{"name", p.name}, {"verdict", checker::verdictName(p.verdict)}, {"origin", p.origin}};
+      if (p.counterexample) jp["counterexample"] = nlohmann::json::parse(checker::traceToJson(*model, *p.counterexample));
+      props.push_back(jp);
+    }
+    nlohmann::json root = {{"input", options.model.input},   {"assumptions", model->assumptions},
+                           {"states", r.states},             {"transitions", r.transitions},
+                           {"depth", r.depth},               {"complete", r.complete},
+                           {"seconds", r.seconds},           {"bytesPerState", r.bytesPerState},
+                           {"properties", props},            {"exitCode", code}};
+    if (!r.limitReached.empty()) root["limit"] = r.limitReached;
+    if (r.rangeError) root["modelError"] = nlohmann::json::parse(checker::traceToJson(*model, *r.rangeError));
+    std::cout << root.dump(2) << "\n";
+    return code;
+  }
+
+  std::cout << "model:       " << options.model.input << " (" << model->variables.size() << " variables, "
+            << model->rules.size() << " rules)\n";
+  std::cout << "assumptions: " << assumptionsLine(*model) << "\n";
+  std::cout << "explored:    " << r.states << " states, " << r.transitions << " transitions, depth " << r.depth << " ("
+            << (r.complete ? "complete" : "PARTIAL: " + r.limitReached) << "), " << r.seconds << " s\n";
+  for (const checker::PropertyResult& p : r.properties) {
+    std::cout << "  " << checker::verdictName(p.verdict) << "  " << p.name;
+    if (p.verdict == checker::Verdict::Proven) {
+      std::cout << "  (all " << r.states << " reachable states, under the assumptions above)";
+    } else if (p.verdict == checker::Verdict::Unknown) {
+      std::cout << "  (not violated in the " << r.states << " states explored; the search was not complete)";
+    } else if (p.counterexample) {
+      std::cout << "  (counterexample of " << p.counterexample->steps.size() << " steps below)";
+    }
+    std::cout << "\n";
+  }
+  for (const checker::PropertyResult& p : r.properties) {
+    if (p.counterexample) std::cout << "\n" << checker::traceToText(*model, *p.counterexample);
+  }
+  if (r.rangeError) {
+    std::cout << "\nmodel error: " << r.limitReached << "\n" << checker::traceToText(*model, *r.rangeError);
+  }
+  return code;
+}
+
+int runExport(const ExportOptions& options) {
+  std::optional<ir::Model> model = buildModel(options.model);
+  if (!model) return kBadInput;
+  std::string text = options.format == "promela" ? checker::toPromela(*model) : ir::toText(*model);
+  if (!options.output) {
+    std::cout << text;
+    return kOk;
+  }
+  if (!writeAtomically(*options.output, text)) {
+    std::cerr << "semo-verify: error: cannot write '" << *options.output << "'\n";
+    return kBadInput;
+  }
+  return kOk;
+}
+
+}  // namespace semo::cli
