@@ -343,7 +343,7 @@ class Reader {
       }
       r.branches.push_back(std::move(b));
     } while (accept("+"));
-    if (r.branches.size() > 1 && std::fabs(total - 1.0) > 1e-9) {
+    if (std::fabs(total - 1.0) > 1e-9) {  // a single outcome too: `-> 0.5 : x' = 1;` is an error
       fail(peek(), "the probabilities of rule '" + r.name + "' add up to " + std::to_string(total) + ", not 1");
     }
     expect(";", "after the rule");
@@ -378,6 +378,8 @@ class Reader {
       bool matched = false;
       for (const auto& [spelling, op] : levels[static_cast<std::size_t>(level)]) {
         if (!isPunct(spelling)) continue;
+        // `+ 0.25 :` starts the next outcome of a probabilistic rule: no expression has a decimal.
+        if (op == Op::Add && peek(1).kind == T::Number) break;
         advance();
         left = Expr::binary(op, std::move(left), binary(level + 1));
         matched = true;

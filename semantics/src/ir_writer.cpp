@@ -136,9 +136,12 @@ std::string toText(const Model& m) {
       const Branch& branch = r.branches[b];
       if (b > 0) out << "\n  +";
       if (r.branches.size() > 1) {
-        char buffer[32];
-        auto end = std::to_chars(buffer, buffer + sizeof buffer, branch.probability).ptr;  // shortest exact form
-        out << ' ' << std::string_view(buffer, static_cast<std::size_t>(end - buffer)) << " :";
+        // The shortest exact form, always with a decimal point ("0.00001", "1.0", never "1e-05"):
+        // the reader takes `+ <decimal>` as the start of the next outcome.
+        char buffer[512];
+        auto end = std::to_chars(buffer, buffer + sizeof buffer, branch.probability, std::chars_format::fixed).ptr;
+        std::string_view p(buffer, static_cast<std::size_t>(end - buffer));
+        out << ' ' << p << (p.find('.') == std::string_view::npos ? ".0" : "") << " :";
       }
       if (branch.assignments.empty()) out << " skip";
       for (std::size_t i = 0; i < branch.assignments.size(); ++i) {

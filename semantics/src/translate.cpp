@@ -36,6 +36,10 @@ void Translator::assumptions() {
   std::string loss;
   if (losePublish_) loss += "publish";
   if (loseEvents_) loss += std::string(loss.empty() ? "" : ", ") + "events";
+  // Knowledge gossip is modelled as merges that may happen late or never, so lost gossip is always covered.
+  bool loseKnowledge = options_.lossOverride ? (*options_.lossOverride == "knowledge" || *options_.lossOverride == "all")
+                                             : m_.assumptions.loseKnowledge;
+  if (loseKnowledge) loss += std::string(loss.empty() ? "" : ", ") + "knowledge";
   out_.assumptions.push_back("loss: " + (loss.empty() ? std::string("none") : loss));
   out_.assumptions.push_back("timing: any (asynchronous interleaving)");
 }
@@ -127,6 +131,21 @@ void Translator::variables() {
         }
         v.pc.push_back(addVar(name + ".pc." + team.plans[p], 0, static_cast<std::int32_t>(prog.code.size()) - 1,
                               static_cast<std::int32_t>(entry), robot, std::move(labels)));
+      }
+      for (std::size_t p = 0; p < team.plans.size(); ++p) {
+        const PlanProgram& prog = programs_[t][p];
+        for (std::size_t i = 0; i < prog.code.size(); ++i) {
+          if (prog.code[i].kind != Instr::Kind::GroupService) continue;
+          const std::string& service = prog.code[i].stmt->service;
+          if (r == team.robots.front()) sites_[{t, service}].push_back({p, i});
+          const strategy::Service* sv = m_.strategy.service(service);
+          for (const strategy::Knowledge& k : sv->knowledge) {
+            for (const std::string& fact : k.values) {
+              if (v.knows.count({k.name, fact}) != 0) continue;
+              v.knows[{k.name, fact}] = addVar(name + ".knows." + k.name + "." + fact, 0, 1, 0, robot);
+            }
+          }
+        }
       }
       for (Index e = 0; e < team.events.size(); ++e) {
         if (!team.events[e].thrownAt.empty() && !team.events[e].caughtAt.empty() && team.robots.size() > 1) {
@@ -245,8 +264,48 @@ std::optional<Expr> Translator::condition(Index robot, const model::Cond& c) con
 void Translator::programRules(Index robot, std::size_t planIndex) {
   const PlanProgram& prog = programs_[m_.robots[robot].team][planIndex];
   for (std::size_t i = 1; i < prog.code.size(); ++i) {
-    if (prog.code[i].controlPoint) walk(robot, planIndex, i, Path{}, i, 0);
+    if (prog.code[i].kind == Instr::Kind::GroupService) {
+      groupServiceRules(robot, planIndex, i);
+    } else if (prog.code[i].controlPoint) {
+      walk(robot, planIndex, i, Path{}, i, 0);
+    }
   }
+}
+
+// Working in a group service: the environment may show the robot a fact it does not hold; the
+// robot leaves when it holds as many facts as the goal asks (never, without a goal).
+void Translator::groupServiceRules(Index robot, std::size_t planIndex, std::size_t at) {
+  const PlanProgram& prog = programs_[m_.robots[robot].team][planIndex];
+  const Instr& in = prog.code[at];
+  const strategy::Service& sv = *m_.strategy.service(in.stmt->service);
+  const RobotVars& v = vars_[robot];
+  Expr here = ir::conjunction({alive(robot), eq(Expr::var(*v.pc[planIndex]), static_cast<std::int32_t>(at))});
+  for (const strategy::Knowledge& k : sv.knowledge) {
+    for (const std::string& fact : k.values) {
+      ir::VarId knows = v.knows.at({k.name, fact});
+      ir::Rule discover;
+      discover.name = m_.robots[robot].name + ".discovers." + k.name + "." + fact + "." + std::to_string(at);
+      discover.robot = static_cast<std::int32_t>(robot);
+      discover.kind = ir::RuleKind::Environment;
+      discover.label = "finds " + k.name + " fact " + fact + " while working in " + sv.name;
+      discover.origin = origin(in.stmt->at);
+      discover.guard = ir::conjunction({here, lnot(Expr::var(knows))});
+      discover.branches.push_back({1.0, {{knows, Expr::constant(1)}}});
+      addRule(std::move(discover));
+    }
+  }
+  if (!sv.goal) return;
+  std::vector<Expr> held;
+  const strategy::Knowledge* goal = nullptr;
+  for (const strategy::Knowledge& k : sv.knowledge) {
+    if (k.name == sv.goal->knowledge) goal = &k;
+  }
+  Expr count = Expr::constant(0);
+  for (const std::string& fact : goal->values) count = Expr::binary(Op::Add, std::move(count), Expr::var(v.knows.at({goal->name, fact})));
+  Path path;
+  path.guard.push_back(Expr::binary(Op::Ge, std::move(count), Expr::constant(static_cast<std::int32_t>(sv.goal->count))));
+  path.words.push_back("reaches the goal of " + sv.name);
+  walk(robot, planIndex, in.next, std::move(path), at, 1);
 }
 
 void Translator::finish(Index robot, std::size_t planIndex, std::size_t start, std::size_t target, Path path) {

@@ -6,6 +6,48 @@
 
 namespace semo::detail {
 
+Expr Translator::inService(Index robot, const std::string& service) const {
+  std::vector<Expr> at;
+  auto it = sites_.find({m_.robots[robot].team, service});
+  if (it == sites_.end()) return Expr::constant(0);
+  for (const ServiceSite& s : it->second) {
+    if (vars_[robot].pc[s.plan]) at.push_back(eq(Expr::var(*vars_[robot].pc[s.plan]), static_cast<std::int32_t>(s.instr)));
+  }
+  return ir::conjunction({alive(robot), ir::disjunction(std::move(at))});
+}
+
+// Gossip: a robot working in a group service learns the facts another member holds. A lost gossip
+// message is a merge that has not happened yet, so loss needs no rule of its own.
+void Translator::knowledgeRules() {
+  for (const auto& [key, sites] : sites_) {
+    const auto& [team, service] = key;
+    const strategy::Service& sv = *m_.strategy.service(service);
+    for (Index q : m_.teams[team].robots) {
+      for (Index r : m_.teams[team].robots) {
+        if (q == r) continue;
+        for (const strategy::Knowledge& k : sv.knowledge) {
+          std::vector<Expr> news;
+          std::vector<ir::Assignment> merge;
+          for (const std::string& fact : k.values) {
+            ir::VarId mine = vars_[q].knows.at({k.name, fact}), theirs = vars_[r].knows.at({k.name, fact});
+            news.push_back(ir::conjunction({Expr::var(theirs), lnot(Expr::var(mine))}));
+            merge.push_back({mine, Expr::binary(Op::Or, Expr::var(mine), Expr::var(theirs))});
+          }
+          ir::Rule learn;
+          learn.name = m_.robots[q].name + ".learns." + k.name + ".from." + m_.robots[r].name;
+          learn.robot = static_cast<std::int32_t>(q);
+          learn.kind = ir::RuleKind::Delivery;
+          learn.label = "learns " + k.name + " from " + m_.robots[r].name;
+          learn.guard = ir::conjunction({inService(q, service), inService(r, service), ir::disjunction(std::move(news))});
+          learn.branches.push_back({1.0, std::move(merge)});
+          learn.weaklyFair = true;
+          addRule(std::move(learn));
+        }
+      }
+    }
+  }
+}
+
 void Translator::eventRules() {
   for (Index q = 0; q < m_.robots.size(); ++q) {
     Index team = m_.robots[q].team;
@@ -309,6 +351,7 @@ std::optional<ir::Model> Translator::run() {
       if (vars_[r].pc[p]) programRules(r, p);
     }
   }
+  knowledgeRules();
   eventRules();
   messageRules();
   crashRules();

@@ -63,8 +63,12 @@ class ProgramBuilder {
     in.next = cont;
     switch (s.kind) {
       case K::CallPrimitive:
-      case K::CallGroupService:
         in.label = "calls " + s.service;
+        return add(std::move(in));
+      case K::CallGroupService:
+        in.kind = Instr::Kind::GroupService;
+        in.label = "works in " + s.service;
+        in.controlPoint = true;
         return add(std::move(in));
       case K::Wait:
         in.label = "waits";

@@ -23,6 +23,7 @@ struct Instr {
     Send,
     Receive,
     Groups,  // a [[ ]] block: arms[k] is the entry of the k-th arm; `next` skips the block
+    GroupService,  // a group service: the robot works in it, sharing knowledge, until its goal
   };
   Kind kind = Kind::Local;
   const model::Stmt* stmt = nullptr;

@@ -29,6 +29,13 @@ class Translator {
     std::vector<std::optional<ir::VarId>> pc;  // per plan of the team
     std::map<Index, ir::VarId> event;          // per event index of the team
     std::map<Index, ir::VarId> view, msg;      // per topic
+    std::map<std::pair<std::string, std::string>, ir::VarId> knows;  // (knowledge, fact) -> held
+  };
+
+  // Where robots of a team work in a group service: (plan index, instruction).
+  struct ServiceSite {
+    std::size_t plan;
+    std::size_t instr;
   };
 
   // A rule under construction while walking from a control point.
@@ -45,6 +52,9 @@ class Translator {
   void walk(Index robot, std::size_t planIndex, std::size_t at, Path path, std::size_t start, int depth);
   void finish(Index robot, std::size_t planIndex, std::size_t start, std::size_t target, Path path);
   void effect(Index robot, std::size_t planIndex, const Instr& in, Path& path, std::vector<Path>& out);
+  void knowledgeRules();
+  void groupServiceRules(Index robot, std::size_t planIndex, std::size_t at);
+  [[nodiscard]] Expr inService(Index robot, const std::string& service) const;
   void eventRules();
   void messageRules();
   void crashRules();
@@ -81,6 +91,7 @@ class Translator {
   std::vector<std::optional<ir::VarId>> crashed_;   // per team
   std::map<Index, ir::VarId> channel_;              // per reliable topic
   std::map<Index, ir::VarId> leader_;               // per leader block
+  std::map<std::pair<Index, std::string>, std::vector<ServiceSite>> sites_;  // (team, group service)
   bool losePublish_ = false, loseEvents_ = false;
   std::size_t rulesPerPoint_ = 0;
 };
