@@ -140,10 +140,9 @@ void Translator::variables() {
           if (r == team.robots.front()) sites_[{t, service}].push_back({p, i});
           const strategy::Service* sv = m_.strategy.service(service);
           for (const strategy::Knowledge& k : sv->knowledge) {
-            for (const std::string& fact : k.values) {
-              if (v.knows.count({k.name, fact}) != 0) continue;
-              v.knows[{k.name, fact}] = addVar(name + ".knows." + k.name + "." + fact, 0, 1, 0, robot);
-            }
+            if (v.knows.count(k.name) != 0) continue;
+            v.knows[k.name] = addVar(name + ".knows." + k.name, 0, static_cast<std::int32_t>(k.values.size()), 0, robot);
+            out_.variables.back().isBool = false;
           }
         }
       }
@@ -266,14 +265,38 @@ void Translator::programRules(Index robot, std::size_t planIndex) {
   for (std::size_t i = 1; i < prog.code.size(); ++i) {
     if (prog.code[i].kind == Instr::Kind::GroupService) {
       groupServiceRules(robot, planIndex, i);
+    } else if (prog.code[i].kind == Instr::Kind::BlockExit) {
+      blockExitRules(robot, planIndex, i);
     } else if (prog.code[i].controlPoint) {
       walk(robot, planIndex, i, Path{}, i, 0);
     }
   }
 }
 
+// The end of a [[ ]] block is a barrier: a robot leaves when no other live robot of its team is
+// still inside the block (between forming it and reaching its end).
+void Translator::blockExitRules(Index robot, std::size_t planIndex, std::size_t at) {
+  Index team = m_.robots[robot].team;
+  const PlanProgram& prog = programs_[team][planIndex];
+  const BlockRange* range = nullptr;
+  for (const BlockRange& b : prog.blocks) {
+    if (b.exit == at) range = &b;
+  }
+  Path path;
+  for (Index q : m_.teams[team].robots) {
+    if (q == robot || !vars_[q].pc[planIndex]) continue;
+    Expr pc = Expr::var(*vars_[q].pc[planIndex]);
+    Expr inside = ir::conjunction({Expr::binary(Op::Gt, pc, Expr::constant(static_cast<std::int32_t>(range->first))),
+                                   Expr::binary(Op::Lt, pc, Expr::constant(static_cast<std::int32_t>(range->last)))});
+    path.guard.push_back(Expr::binary(Op::Or, lnot(alive(q)), lnot(std::move(inside))));
+  }
+  path.words.push_back("leaves the group block");
+  walk(robot, planIndex, prog.code[at].next, std::move(path), at, 1);
+}
+
 // Working in a group service: the environment may show the robot a fact it does not hold; the
-// robot leaves when it holds as many facts as the goal asks (never, without a goal).
+// robot leaves when it holds as many facts as the goal asks (never, without a goal). Knowledge is
+// counted, not listed (specs/semantics.md): which facts a robot holds matters to no property here.
 void Translator::groupServiceRules(Index robot, std::size_t planIndex, std::size_t at) {
   const PlanProgram& prog = programs_[m_.robots[robot].team][planIndex];
   const Instr& in = prog.code[at];
@@ -281,29 +304,20 @@ void Translator::groupServiceRules(Index robot, std::size_t planIndex, std::size
   const RobotVars& v = vars_[robot];
   Expr here = ir::conjunction({alive(robot), eq(Expr::var(*v.pc[planIndex]), static_cast<std::int32_t>(at))});
   for (const strategy::Knowledge& k : sv.knowledge) {
-    for (const std::string& fact : k.values) {
-      ir::VarId knows = v.knows.at({k.name, fact});
-      ir::Rule discover;
-      discover.name = m_.robots[robot].name + ".discovers." + k.name + "." + fact + "." + std::to_string(at);
-      discover.robot = static_cast<std::int32_t>(robot);
-      discover.kind = ir::RuleKind::Environment;
-      discover.label = "finds " + k.name + " fact " + fact + " while working in " + sv.name;
-      discover.origin = origin(in.stmt->at);
-      discover.guard = ir::conjunction({here, lnot(Expr::var(knows))});
-      discover.branches.push_back({1.0, {{knows, Expr::constant(1)}}});
-      addRule(std::move(discover));
-    }
+    ir::VarId knows = v.knows.at(k.name);
+    ir::Rule discover;
+    discover.name = m_.robots[robot].name + ".discovers." + k.name + "." + std::to_string(at);
+    discover.robot = static_cast<std::int32_t>(robot);
+    discover.kind = ir::RuleKind::Environment;
+    discover.label = "finds a new " + k.name + " fact while working in " + sv.name;
+    discover.origin = origin(in.stmt->at);
+    discover.guard = ir::conjunction({here, Expr::binary(Op::Lt, Expr::var(knows), Expr::constant(static_cast<std::int32_t>(k.values.size())))});
+    discover.branches.push_back({1.0, {{knows, Expr::binary(Op::Add, Expr::var(knows), Expr::constant(1))}}});
+    addRule(std::move(discover));
   }
   if (!sv.goal) return;
-  std::vector<Expr> held;
-  const strategy::Knowledge* goal = nullptr;
-  for (const strategy::Knowledge& k : sv.knowledge) {
-    if (k.name == sv.goal->knowledge) goal = &k;
-  }
-  Expr count = Expr::constant(0);
-  for (const std::string& fact : goal->values) count = Expr::binary(Op::Add, std::move(count), Expr::var(v.knows.at({goal->name, fact})));
   Path path;
-  path.guard.push_back(Expr::binary(Op::Ge, std::move(count), Expr::constant(static_cast<std::int32_t>(sv.goal->count))));
+  path.guard.push_back(Expr::binary(Op::Ge, Expr::var(v.knows.at(sv.goal->knowledge)), Expr::constant(static_cast<std::int32_t>(sv.goal->count))));
   path.words.push_back("reaches the goal of " + sv.name);
   walk(robot, planIndex, in.next, std::move(path), at, 1);
 }

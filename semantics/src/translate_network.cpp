@@ -16,8 +16,10 @@ Expr Translator::inService(Index robot, const std::string& service) const {
   return ir::conjunction({alive(robot), ir::disjunction(std::move(at))});
 }
 
-// Gossip: a robot working in a group service learns the facts another member holds. A lost gossip
-// message is a merge that has not happened yet, so loss needs no rule of its own.
+// Gossip: a robot working in a group service learns the facts another member holds. With facts
+// counted, the merge of q's c_q facts with r's c_r facts holds between max(c_q, c_r) and
+// min(|facts|, c_q + c_r) facts: every such count is a possible outcome (one rule each). A lost
+// gossip message is a merge that has not happened yet, so loss needs no rule of its own.
 void Translator::knowledgeRules() {
   for (const auto& [key, sites] : sites_) {
     const auto& [team, service] = key;
@@ -26,22 +28,21 @@ void Translator::knowledgeRules() {
       for (Index r : m_.teams[team].robots) {
         if (q == r) continue;
         for (const strategy::Knowledge& k : sv.knowledge) {
-          std::vector<Expr> news;
-          std::vector<ir::Assignment> merge;
-          for (const std::string& fact : k.values) {
-            ir::VarId mine = vars_[q].knows.at({k.name, fact}), theirs = vars_[r].knows.at({k.name, fact});
-            news.push_back(ir::conjunction({Expr::var(theirs), lnot(Expr::var(mine))}));
-            merge.push_back({mine, Expr::binary(Op::Or, Expr::var(mine), Expr::var(theirs))});
+          Expr mine = Expr::var(vars_[q].knows.at(k.name)), theirs = Expr::var(vars_[r].knows.at(k.name));
+          for (std::int32_t n = 1; n <= static_cast<std::int32_t>(k.values.size()); ++n) {
+            ir::Rule learn;
+            learn.name = m_.robots[q].name + ".learns." + k.name + ".from." + m_.robots[r].name + "." + std::to_string(n);
+            learn.robot = static_cast<std::int32_t>(q);
+            learn.kind = ir::RuleKind::Delivery;
+            learn.label = "learns " + k.name + " from " + m_.robots[r].name + " (now holds " + std::to_string(n) + ")";
+            learn.guard = ir::conjunction({inService(q, service), inService(r, service),
+                                           Expr::binary(Op::Lt, mine, Expr::constant(n)),
+                                           Expr::binary(Op::Ge, Expr::constant(n), theirs),
+                                           Expr::binary(Op::Le, Expr::constant(n), Expr::binary(Op::Add, mine, theirs))});
+            learn.branches.push_back({1.0, {{vars_[q].knows.at(k.name), Expr::constant(n)}}});
+            learn.weaklyFair = true;
+            addRule(std::move(learn));
           }
-          ir::Rule learn;
-          learn.name = m_.robots[q].name + ".learns." + k.name + ".from." + m_.robots[r].name;
-          learn.robot = static_cast<std::int32_t>(q);
-          learn.kind = ir::RuleKind::Delivery;
-          learn.label = "learns " + k.name + " from " + m_.robots[r].name;
-          learn.guard = ir::conjunction({inService(q, service), inService(r, service), ir::disjunction(std::move(news))});
-          learn.branches.push_back({1.0, std::move(merge)});
-          learn.weaklyFair = true;
-          addRule(std::move(learn));
         }
       }
     }
@@ -135,7 +136,14 @@ void Translator::crashRules() {
     crash.label = "crashes";
     crash.guard = ir::conjunction({Expr::var(*vars_[r].alive),
                                    Expr::binary(Op::Lt, Expr::var(crashed), Expr::constant(crashBudget(team)))});
-    crash.branches.push_back({1.0, {{*vars_[r].alive, Expr::constant(0)}, {crashed, Expr::binary(Op::Add, Expr::var(crashed), Expr::constant(1))}}});
+    ir::Branch branch{1.0, {{*vars_[r].alive, Expr::constant(0)}, {crashed, Expr::binary(Op::Add, Expr::var(crashed), Expr::constant(1))}}};
+    // A crashed robot's other variables are never read again (its rules are off, and properties
+    // speak of live robots): clear them, so that where it crashed does not multiply the states.
+    for (ir::VarId var = 0; var < out_.variables.size(); ++var) {
+      const ir::Variable& v = out_.variables[var];
+      if (v.robot == static_cast<std::int32_t>(r) && var != *vars_[r].alive) branch.assignments.push_back({var, Expr::constant(v.init)});
+    }
+    crash.branches.push_back(std::move(branch));
     addRule(std::move(crash));
   }
 }
@@ -166,23 +174,45 @@ Expr Translator::electedLeader(Index b) const {
   return Expr::ite(ir::disjunction(std::move(valid)), Expr::var(leader), bestCandidate(b));
 }
 
+// A failed leader is replaced by the best live candidate still inside the block: it notices (the
+// failure detector of the strategy's leader selection) and moves from `others` to the leader's part.
 void Translator::leaderRules() {
-  for (const auto& [b, leader] : leader_) {
-    bool crashes = false;
-    for (Index r : m_.teams[m_.groupBlocks[b].team].robots) crashes = crashes || vars_[r].alive.has_value();
-    if (!crashes) continue;
-    ir::Rule elect;
-    elect.name = "reelect." + std::to_string(b);
-    elect.kind = ir::RuleKind::Timer;
-    elect.label = "detects the leader's failure and elects a new leader";
-    elect.origin = origin(m_.groupBlocks[b].at);
-    auto none = static_cast<std::int32_t>(m_.robots.size());
-    Expr elected = electedLeader(b);
-    elect.guard = ir::conjunction({Expr::binary(Op::Ne, Expr::var(leader), Expr::constant(none)),
-                                   Expr::binary(Op::Ne, Expr::var(leader), elected)});
-    elect.branches.push_back({1.0, {{leader, std::move(elected)}}});
-    elect.weaklyFair = true;
-    addRule(std::move(elect));
+  for (Index t = 0; t < programs_.size(); ++t) {
+    for (std::size_t p = 0; p < programs_[t].size(); ++p) {
+      for (const BlockRange& range : programs_[t][p].blocks) {
+        const model::GroupBlock& block = m_.groupBlocks[range.block];
+        if (!block.isLeaderBlock) continue;
+        std::size_t leaderArm = 0, othersArm = SIZE_MAX;
+        for (std::size_t a = 0; a < block.arms.size(); ++a) {
+          if (block.arms[a].kind == model::GroupArm::Kind::Leader) leaderArm = a;
+          if (block.arms[a].kind == model::GroupArm::Kind::Others) othersArm = a;
+        }
+        if (othersArm == SIZE_MAX) continue;
+        ir::VarId leader = leader_.at(range.block);
+        std::size_t leaderEntry = programs_[t][p].code[range.last].arms[leaderArm];
+        for (Index c : block.arms[leaderArm].candidates) {
+          if (!vars_[c].alive && !vars_[c].pc[p]) continue;
+          bool anyCrash = false;
+          for (Index r : m_.teams[t].robots) anyCrash = anyCrash || vars_[r].alive.has_value();
+          if (!anyCrash || !vars_[c].pc[p]) continue;
+          Expr pc = Expr::var(*vars_[c].pc[p]);
+          ir::Rule take;
+          take.name = m_.robots[c].name + ".takes_over." + std::to_string(range.first);
+          take.robot = static_cast<std::int32_t>(c);
+          take.label = "notices the leader failed and takes over as leader";
+          take.origin = origin(block.arms[leaderArm].at);
+          take.guard = ir::conjunction({alive(c),
+                                        Expr::binary(Op::Ge, pc, Expr::constant(static_cast<std::int32_t>(range.armFirst[othersArm]))),
+                                        Expr::binary(Op::Lt, pc, Expr::constant(static_cast<std::int32_t>(range.armEnd(othersArm)))),
+                                        eq(electedLeader(range.block), static_cast<std::int32_t>(c)),
+                                        Expr::binary(Op::Ne, Expr::var(leader), Expr::constant(static_cast<std::int32_t>(c)))});
+          take.branches.push_back({1.0, {{leader, Expr::constant(static_cast<std::int32_t>(c))},
+                                         {*vars_[c].pc[p], Expr::constant(static_cast<std::int32_t>(leaderEntry))}}});
+          take.weaklyFair = true;
+          addRule(std::move(take));
+        }
+      }
+    }
   }
 }
 

@@ -105,9 +105,18 @@ class ProgramBuilder {
       case K::Groups: {
         const model::GroupBlock& b = m_.groupBlocks[s.groupBlock];
         std::size_t first = p_.code.size();
-        std::vector<std::size_t> arms;
+        Instr exit;
+        exit.kind = Instr::Kind::BlockExit;
+        exit.stmt = &s;
+        exit.next = cont;
+        exit.block = s.groupBlock;
+        exit.controlPoint = true;
+        exit.label = "waits for the other groups to finish";
+        std::size_t exitAt = add(std::move(exit));
+        std::vector<std::size_t> arms, armFirst;
         for (const model::GroupArm& arm : b.arms) {
-          std::size_t entry = block(arm.body, cont);
+          armFirst.push_back(p_.code.size());
+          std::size_t entry = block(arm.body, exitAt);
           p_.code[entry].controlPoint = true;
           arms.push_back(entry);
         }
@@ -117,7 +126,7 @@ class ProgramBuilder {
         in.controlPoint = true;
         in.label = b.isLeaderBlock ? "forms the leader group" : "forms the groups";
         std::size_t at = add(std::move(in));
-        p_.blocks.push_back({s.groupBlock, first, at});
+        p_.blocks.push_back({s.groupBlock, first, at, exitAt, std::move(armFirst)});
         return at;
       }
     }

@@ -24,6 +24,7 @@ struct Instr {
     Receive,
     Groups,  // a [[ ]] block: arms[k] is the entry of the k-th arm; `next` skips the block
     GroupService,  // a group service: the robot works in it, sharing knowledge, until its goal
+    BlockExit,     // the end of a [[ ]] block: waits until no robot is still inside it
   };
   Kind kind = Kind::Local;
   const model::Stmt* stmt = nullptr;
@@ -39,7 +40,10 @@ struct Instr {
 
 struct BlockRange {
   Index block;
-  std::size_t first, last;  // instructions [first, last] hold the block
+  std::size_t first, last;           // instructions [first, last] hold the block; `last` forms it
+  std::size_t exit;                  // the BlockExit instruction (== first)
+  std::vector<std::size_t> armFirst;  // arm k occupies [armFirst[k], armFirst[k+1]) (the last arm ends before `last`)
+  [[nodiscard]] std::size_t armEnd(std::size_t k) const { return k + 1 < armFirst.size() ? armFirst[k + 1] : last; }
 };
 
 struct PlanProgram {

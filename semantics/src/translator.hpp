@@ -29,7 +29,7 @@ class Translator {
     std::vector<std::optional<ir::VarId>> pc;  // per plan of the team
     std::map<Index, ir::VarId> event;          // per event index of the team
     std::map<Index, ir::VarId> view, msg;      // per topic
-    std::map<std::pair<std::string, std::string>, ir::VarId> knows;  // (knowledge, fact) -> held
+    std::map<std::string, ir::VarId> knows;    // knowledge item -> how many of its facts the robot holds
   };
 
   // Where robots of a team work in a group service: (plan index, instruction).
@@ -54,6 +54,7 @@ class Translator {
   void effect(Index robot, std::size_t planIndex, const Instr& in, Path& path, std::vector<Path>& out);
   void knowledgeRules();
   void groupServiceRules(Index robot, std::size_t planIndex, std::size_t at);
+  void blockExitRules(Index robot, std::size_t planIndex, std::size_t at);
   [[nodiscard]] Expr inService(Index robot, const std::string& service) const;
   void eventRules();
   void messageRules();
