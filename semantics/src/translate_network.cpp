@@ -315,7 +315,8 @@ void Translator::invariants() {
           for (Index r : m_.teams[t].robots) {
             if (!vars_[r].pc[p]) continue;
             Expr pc = Expr::var(*vars_[r].pc[p]);
-            inside.push_back(ir::conjunction({alive(r), Expr::binary(Op::Ge, pc, Expr::constant(static_cast<std::int32_t>(range.first))),
+            // Forming the block or inside an arm; a robot at the block's exit has finished with it.
+            inside.push_back(ir::conjunction({alive(r), Expr::binary(Op::Gt, pc, Expr::constant(static_cast<std::int32_t>(range.first))),
                                               Expr::binary(Op::Le, pc, Expr::constant(static_cast<std::int32_t>(range.last)))}));
           }
           for (const model::GroupArm& arm : block.arms) {
@@ -328,7 +329,7 @@ void Translator::invariants() {
                        (arm.names.size() > 1 ? ", ..." : "") + ")]";
             inv.origin = origin(arm.at);
             inv.holds = Expr::binary(Op::Implies, ir::disjunction(inside), ir::disjunction(std::move(live)));
-            if (!inv.holds.args[1].isTrue()) out_.invariants.push_back(std::move(inv));
+            out_.invariants.push_back(std::move(inv));
           }
         }
       }

@@ -1,0 +1,158 @@
+// The mission-to-IR translation, checked through the explicit engine on small missions whose
+// answers can be worked out by hand.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "semo/checker/explicit_search.hpp"
+#include "semo/semantics/ir_text.hpp"
+#include "semo/semantics/load.hpp"
+#include "semo/semantics/translate.hpp"
+
+namespace semo {
+namespace {
+
+const std::string kStrategy = SEMO_SOURCE_DIR "/tests/diagnostics/common/strategy.xml";
+
+struct Translated {
+  SourceManager sources;
+  DiagnosticEngine diags{sources};
+  std::optional<ir::Model> model;
+};
+
+std::unique_ptr<Translated> translateText(const std::string& mission, const std::string& name) {
+  auto t = std::make_unique<Translated>();
+  std::string path = testing::TempDir() + "/" + name + ".semo";
+  std::ofstream(path) << mission;
+  auto m = loadMission({path, kStrategy, std::nullopt}, t->sources, t->diags);
+  if (m) t->model = translate(*m, {}, t->sources, t->diags);
+  return t;
+}
+
+const checker::PropertyResult* find(const checker::SearchResult& r, const std::string& prefix) {
+  for (const checker::PropertyResult& p : r.properties) {
+    if (p.name.rfind(prefix, 0) == 0) return &p;
+  }
+  return nullptr;
+}
+
+std::string stepLabel(const ir::Model& m, const checker::Step& s) { return m.rules[s.rule].label; }
+
+const char* kLoneCandidate = R"(
+Team: TurtlebotBurger burger, Ev3Robot ev3[2]
+Team.Action.Go { [[ group (instance of TurtlebotBurger) { beep() } others { move("x") } ]] }
+Team.GO { set(Action, Go) }
+Team.main { case (GO): default: mode = GO }
+verify { assume crash <= CRASH in Team  check group_formation }
+)";
+
+std::string withCrash(int n) {
+  std::string text = kLoneCandidate;
+  text.replace(text.find("CRASH"), 5, std::to_string(n));
+  return text;
+}
+
+TEST(Translate, OneCrashBreaksAGroupWithOneCandidate) {
+  auto t = translateText(withCrash(1), "lone1");
+  ASSERT_TRUE(t->model.has_value());
+  checker::SearchResult r = checker::checkSafety(*t->model, {});
+  const checker::PropertyResult* p = find(r, "group_formation");
+  ASSERT_NE(p, nullptr);
+  ASSERT_EQ(p->verdict, checker::Verdict::Violated);
+  // Shortest: every robot starts about to form the block, and the only Burger crashes.
+  ASSERT_EQ(p->counterexample->steps.size(), 1u);
+  bool burgerCrashes = false;
+  for (const checker::Step& s : p->counterexample->steps) {
+    const ir::Rule& rule = t->model->rules[s.rule];
+    burgerCrashes = burgerCrashes || (rule.kind == ir::RuleKind::Crash && t->model->robots[static_cast<std::size_t>(rule.robot)] == "burger");
+  }
+  EXPECT_TRUE(burgerCrashes);
+}
+
+TEST(Translate, WithoutCrashesTheGroupCanAlwaysBeFormed) {
+  auto t = translateText(withCrash(0), "lone0");
+  ASSERT_TRUE(t->model.has_value());
+  checker::SearchResult r = checker::checkSafety(*t->model, {});
+  EXPECT_TRUE(r.complete);
+  ASSERT_NE(find(r, "group_formation"), nullptr);
+  EXPECT_EQ(find(r, "group_formation")->verdict, checker::Verdict::Proven);
+  EXPECT_EQ(t->model->assumptions.front(), "no crash");
+}
+
+TEST(Translate, AReceiveNobodyServesDeadlocksAtOnce) {
+  auto t = translateText(R"(
+Master: iRobotCreate boss
+Team: TurtlebotBurger burger
+Master.Listen.Collect { receive(Team, Team.report) }
+Master.RUN { set(Listen, Collect) }
+Master.main { case (RUN): default: mode = RUN }
+Team.Action.Go { move("x") }
+Team.GO { set(Action, Go) }
+Team.main { case (GO): default: mode = GO }
+verify { check deadlock_freedom }
+)", "deadlock");
+  ASSERT_TRUE(t->model.has_value());
+  checker::SearchResult r = checker::checkSafety(*t->model, {});
+  const checker::PropertyResult* p = find(r, "deadlock_freedom");
+  ASSERT_NE(p, nullptr);
+  // The burger's loop (move, default back to GO) always has a step, so no deadlock at all...
+  EXPECT_EQ(p->verdict, checker::Verdict::Proven);
+}
+
+TEST(Translate, ABlockedReceiverWithEveryoneElseDoneIsADeadlock) {
+  auto t = translateText(R"(
+Master: iRobotCreate boss
+Team: TurtlebotBurger burger
+Master.Listen.Collect { receive(Team, Team.report) receive(Team, Team.report) }
+Master.RUN { set(Listen, Collect) }
+Master.main { case (RUN): default: mode = RUN }
+Team.Action.Go { send(Master, Team.report = 1) }
+Team.GO { set(Action, Go) }
+Team.main { case (GO): catch(never): mode = GO }
+verify { check deadlock_freedom }
+)", "deadlock2");
+  ASSERT_TRUE(t->model.has_value()) << (t->diags.diagnostics().empty() ? "" : t->diags.format(t->diags.diagnostics().front()));
+  checker::SearchResult r = checker::checkSafety(*t->model, {});
+  const checker::PropertyResult* p = find(r, "deadlock_freedom");
+  ASSERT_NE(p, nullptr);
+  ASSERT_EQ(p->verdict, checker::Verdict::Violated);
+  // The burger sends once, the master takes it and waits for a second report that never comes.
+  ASSERT_EQ(p->counterexample->steps.size(), 2u);
+  EXPECT_EQ(stepLabel(*t->model, p->counterexample->steps[0]), "sends report");
+  EXPECT_EQ(stepLabel(*t->model, p->counterexample->steps[1]), "receives report");
+}
+
+TEST(Translate, KnowledgeIsCountedAndShared) {
+  auto t = translateText(R"(
+Team: Ev3Robot ev3[2]
+Team.Action.Search { searchPaper() }
+Team.SEARCH { set(Action, Search) }
+Team.DONE { set(Action, Search) }
+Team.main { case (SEARCH): default: mode = DONE }
+)", "knowledge");
+  ASSERT_TRUE(t->model.has_value());
+  auto knows = t->model->find("ev3_0.knows.papers");
+  ASSERT_TRUE(knows.has_value());
+  EXPECT_EQ(t->model->variables[*knows].max, 3);  // red, yellow, blue
+  std::size_t learns = 0;
+  for (const ir::Rule& r : t->model->rules) learns += r.label.rfind("learns papers", 0) == 0 ? 1 : 0;
+  EXPECT_EQ(learns, 2u * 3u);  // each robot from the other, to 1, 2 or 3 facts
+  checker::SearchResult r = checker::checkSafety(*t->model, {});
+  EXPECT_TRUE(r.complete);
+}
+
+TEST(Translate, TextFormRoundTripsAndExploresTheSameStates) {
+  auto t = translateText(withCrash(1), "roundtrip");
+  ASSERT_TRUE(t->model.has_value());
+  std::string text = ir::toText(*t->model);
+  SourceManager sources;
+  DiagnosticEngine diags(sources);
+  auto again = ir::parseText(sources, sources.add("m.ir", text), diags);
+  ASSERT_TRUE(again.has_value()) << (diags.diagnostics().empty() ? "" : diags.format(diags.diagnostics().front()));
+  EXPECT_EQ(ir::toText(*again), text);
+  EXPECT_EQ(checker::checkSafety(*again, {}).states, checker::checkSafety(*t->model, {}).states);
+}
+
+}  // namespace
+}  // namespace semo
