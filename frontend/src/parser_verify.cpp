@@ -81,6 +81,18 @@ void Parser::parseVerifyItem(ast::VerifyBlock& block) {
     }
     if (atWord("loss")) {
       advance();
+      if (atWord("burst")) {
+        block.lossBurstAt = advance().range;
+        expect(Tok::Le, "after 'assume loss burst' (write 'assume loss burst <= N')");
+        const Token& n = peek();
+        if (!at(Tok::Int)) failExpected("the longest run of consecutive losses", "");
+        advance();
+        std::int64_t burst = 0;
+        auto [ptr, ec] = std::from_chars(n.text.data(), n.text.data() + n.text.size(), burst);
+        if (ec != std::errc() || burst < 1 || burst > 100) fail(n, "a loss burst must be between 1 and 100");
+        block.lossBurst = burst;
+        return;
+      }
       do {
         // `publish` is a reserved word but also names a loss kind.
         ast::Name kind = at(Tok::KwPublish) ? ast::Name{"publish", advance().range} : expectName("a loss kind");

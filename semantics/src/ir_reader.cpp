@@ -1,5 +1,6 @@
 // Reads the text form of the IR (specs/ir.md).
 #include <charconv>
+#include <cstdint>
 #include <cmath>
 #include <cstdlib>
 #include <unordered_map>
@@ -151,15 +152,17 @@ class Reader {
     if (peek().kind != kind) fail(peek(), "expected " + what + ", found " + found());
     return advance();
   }
-  std::int32_t integer(const Token& t) {
-    std::int32_t v = 0;
+  // `negative`: the literal follows a '-', so that -2147483648 can be written.
+  std::int32_t integer(const Token& t, bool negative = false) {
+    std::int64_t v = 0;
     auto [ptr, ec] = std::from_chars(t.text.data(), t.text.data() + t.text.size(), v);
-    if (ec != std::errc()) fail(t, "integer out of range");
-    return v;
+    if (negative) v = -v;
+    if (ec != std::errc() || v < INT32_MIN || v > INT32_MAX) fail(t, "integer out of range");
+    return static_cast<std::int32_t>(v);
   }
   std::int32_t signedInteger() {
     bool negative = accept("-");
-    return negative ? -integer(expectKind(T::Int, "an integer")) : integer(expectKind(T::Int, "an integer"));
+    return integer(expectKind(T::Int, "an integer"), negative);
   }
 
   // ---- items
@@ -167,7 +170,9 @@ class Reader {
     if (isWord("robots")) {
       advance();
       while (peek().kind == T::Name) {
-        std::string name(advance().text);
+        const Token& at = advance();
+        std::string name(at.text);
+        if (robotIndex_.count(name) != 0) fail(at, "robot '" + name + "' is declared twice");
         robotIndex_[name] = static_cast<std::int32_t>(model_.robots.size());
         model_.robots.push_back(name);
       }
@@ -183,7 +188,7 @@ class Reader {
     } else if (isWord("invariant")) {
       advance();
       Invariant inv;
-      inv.name = std::string(expectKind(T::Name, "an invariant name").text);
+      inv.name = declaredName("an invariant name").first;
       attributes([&](const Token& key, const std::string& value) {
         if (key.text == "origin") return inv.origin = value, true;
         return false;
@@ -206,7 +211,11 @@ class Reader {
   static std::string unescape(std::string_view raw) {
     std::string out;
     for (std::size_t i = 0; i < raw.size(); ++i) {
-      if (raw[i] == '\\' && i + 1 < raw.size()) ++i;
+      if (raw[i] == '\\' && i + 1 < raw.size()) {
+        ++i;
+        out += raw[i] == 'n' ? '\n' : raw[i];  // \n is a line break; \" \\ and any other \c are c
+        continue;
+      }
       out += raw[i];
     }
     return out;
@@ -240,14 +249,23 @@ class Reader {
     model_.variables.push_back(std::move(v));
   }
 
+  // The name in a declaration: a name, or a quoted string taken literally (for names that are not
+  // names of the text form, such as "group_formation[Search group]" or one element "a[2]").
+  std::pair<std::string, bool> declaredName(const std::string& what) {
+    if (peek().kind == T::String) return {unescape(advance().text), true};
+    return {std::string(expectKind(T::Name, what).text), false};
+  }
+
   void variable() {
     advance();
-    const Token& nameToken = expectKind(T::Name, "a variable name");
-    std::string name(nameToken.text);
+    const Token& nameToken = peek();
+    auto [name, quoted] = declaredName("a variable name");
     std::int32_t arraySize = 0;
-    if (auto open = name.find('['); open != std::string::npos) {
-      arraySize = std::atoi(name.c_str() + open + 1);
+    if (auto open = name.find('['); open != std::string::npos && !quoted) {
+      std::string_view digits = std::string_view(name).substr(open + 1, name.size() - open - 2);
+      auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), arraySize);
       name.resize(open);
+      if (ec != std::errc() || arraySize > 1'000'000) fail(nameToken, "an array has at most 1000000 elements");
       if (arraySize < 1) fail(nameToken, "an array needs at least one element");
     }
     expect(":", "after the variable name");
@@ -299,7 +317,7 @@ class Reader {
   void rule() {
     advance();
     Rule r;
-    r.name = std::string(expectKind(T::Name, "a rule name").text);
+    r.name = declaredName("a rule name").first;
     attributes([&](const Token& key, const std::string& value) {
       if (key.text == "robot") return r.robot = robot(key, value), true;
       if (key.text == "origin") return r.origin = value, true;
@@ -390,7 +408,11 @@ class Reader {
   }
   Expr unary() {
     if (accept("!")) return Expr::unary(Op::Not, unary());
-    if (accept("-")) return Expr::unary(Op::Neg, unary());
+    if (accept("-")) {
+      // The writer writes the constant INT32_MIN as -2147483648, which Neg(2147483648) cannot be.
+      if (peek().kind == T::Int && peek().text == "2147483648") return Expr::constant(integer(advance(), true));
+      return Expr::unary(Op::Neg, unary());
+    }
     if (accept("(")) {
       Expr e = expr();
       expect(")", "to close the parenthesis");

@@ -1,4 +1,5 @@
 // Writes the IR in its text form (specs/ir.md).
+#include <cctype>
 #include <charconv>
 #include <sstream>
 
@@ -46,10 +47,55 @@ const char* symbol(Op op) {
 std::string quoted(const std::string& s) {
   std::string out = "\"";
   for (char c : s) {
+    if (c == '\n') {  // a string stays on its line
+      out += "\\n";
+      continue;
+    }
     if (c == '"' || c == '\\') out += '\\';
     out += c;
   }
   return out + "\"";
+}
+
+// Whether the reader takes `name` as one name token: [A-Za-z_][A-Za-z0-9_.]* without "..", and
+// with an index suffix [N] if `indexed` (in a variable declaration, a suffix declares an array).
+bool isPlainName(const std::string& name, bool indexed) {
+  std::size_t end = name.size();
+  if (indexed && end > 2 && name.back() == ']') {
+    std::size_t open = name.rfind('[');
+    if (open != std::string::npos && open + 2 < end &&
+        name.find_first_not_of("0123456789", open + 1) == end - 1) {
+      end = open;
+    }
+  }
+  if (end == 0 || !(std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_')) return false;
+  for (std::size_t i = 0; i < end; ++i) {
+    char c = name[i];
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.')) return false;
+    if (c == '.' && i + 1 < end && name[i + 1] == '.') return false;
+  }
+  return name != "true" && name != "false" && name != "skip" && name != "bool";
+}
+
+// How many variables from `first` on are the elements base[0], base[1], ... of one array as the
+// reader declares it (same range, initial value, robot and value names); 0 if `first` is not base[0].
+std::size_t arrayRun(const std::vector<Variable>& vars, std::size_t first) {
+  const Variable& v = vars[first];
+  if (v.name.size() < 4 || v.name.compare(v.name.size() - 3, 3, "[0]") != 0) return 0;
+  std::string base = v.name.substr(0, v.name.size() - 3);
+  if (!isPlainName(base, false)) return 0;
+  std::size_t n = 1;
+  while (first + n < vars.size()) {
+    const Variable& e = vars[first + n];
+    if (e.name != base + "[" + std::to_string(n) + "]" || e.min != v.min || e.max != v.max || e.init != v.init ||
+        e.isBool != v.isBool || e.robot != v.robot || e.valueNames != v.valueNames) {
+      break;
+    }
+    ++n;
+  }
+  // A lone base[0] followed by a base[1] that differs reads better quoted, like its neighbours.
+  if (n == 1 && first + 1 < vars.size() && vars[first + 1].name == base + "[1]") return 0;
+  return n;
 }
 
 void write(std::ostream& out, const Model& m, const Expr& e, int context) {
@@ -108,8 +154,16 @@ std::string toText(const Model& m) {
   }
   for (const std::string& a : m.assumptions) out << "assume " << quoted(a) << ";\n";
   out << '\n';
-  for (const Variable& v : m.variables) {
-    out << "var " << v.name << " : ";
+  for (std::size_t i = 0; i < m.variables.size();) {
+    const Variable& v = m.variables[i];
+    std::size_t elements = arrayRun(m.variables, i);
+    if (elements > 0) {  // base[0] .. base[n-1], all alike: written back as the array `var base[n]`
+      out << "var " << v.name.substr(0, v.name.size() - 3) << '[' << elements << "] : ";
+      i += elements;
+    } else {
+      out << "var " << (isPlainName(v.name, false) ? v.name : quoted(v.name)) << " : ";
+      ++i;
+    }
     if (v.isBool) {
       out << "bool = " << (v.init != 0 ? "true" : "false");
     } else {
@@ -125,7 +179,7 @@ std::string toText(const Model& m) {
   }
   out << '\n';
   for (const Rule& r : m.rules) {
-    out << "rule " << r.name;
+    out << "rule " << (isPlainName(r.name, true) ? r.name : quoted(r.name));
     if (r.robot != kNoRobot) out << " @robot(" << m.robots.at(static_cast<std::size_t>(r.robot)) << ')';
     if (r.kind != RuleKind::Step) out << " @kind(" << kindName(r.kind) << ')';
     if (!r.origin.empty()) out << " @origin(" << quoted(r.origin) << ')';
@@ -153,7 +207,7 @@ std::string toText(const Model& m) {
   }
   if (!m.invariants.empty()) out << '\n';
   for (const Invariant& inv : m.invariants) {
-    out << "invariant " << inv.name;
+    out << "invariant " << (isPlainName(inv.name, true) ? inv.name : quoted(inv.name));
     if (!inv.origin.empty()) out << " @origin(" << quoted(inv.origin) << ')';
     out << " : " << toText(m, inv.holds) << ";\n";
   }

@@ -28,6 +28,9 @@ void Translator::assumptions() {
     const std::string& k = *options_.lossOverride;
     losePublish_ = k == "publish" || k == "all";
     loseEvents_ = k == "events" || k == "all";
+    loseHeartbeats_ = k == "heartbeats" || k == "all";
+  } else {
+    loseHeartbeats_ = m_.assumptions.loseHeartbeats;
   }
   for (Index t = 0; t < m_.teams.size(); ++t) {
     if (crashBudget(t) > 0) out_.assumptions.push_back("crash <= " + std::to_string(crashBudget(t)) + " in " + m_.teams[t].name);
@@ -35,6 +38,8 @@ void Translator::assumptions() {
   if (out_.assumptions.empty()) out_.assumptions.push_back("no crash");
   std::string loss;
   if (losePublish_) loss += "publish";
+  if (loseHeartbeats_) loss += std::string(loss.empty() ? "" : ", ") + "heartbeats (at most " +
+                              std::to_string(m_.assumptions.lossBurst) + " in a row)";
   if (loseEvents_) loss += std::string(loss.empty() ? "" : ", ") + "events";
   // Knowledge gossip is modelled as merges that may happen late or never, so lost gossip is always covered.
   bool loseKnowledge = options_.lossOverride ? (*options_.lossOverride == "knowledge" || *options_.lossOverride == "all")
@@ -99,7 +104,10 @@ void Translator::variables() {
   for (Index t = 0; t < m_.teams.size(); ++t) {
     const model::Team& team = m_.teams[t];
     for (const std::string& plan : team.plans) programs_[t].push_back(detail::buildProgram(m_, t, plan));
-    if (crashBudget(t) > 0) crashed_[t] = addVar(team.name + ".crashed", 0, crashBudget(t), 0, ir::kNoRobot);
+    if (crashBudget(t) > 0) {
+      crashed_[t] = addVar(team.name + ".crashed", 0, crashBudget(t), 0, ir::kNoRobot);
+      out_.variables.back().isBool = false;  // a count, even when the budget is 1
+    }
     std::vector<std::string> modeNames;
     for (Index md : team.modes) modeNames.push_back(m_.modes[md].name);
     for (Index r : team.robots) {
@@ -175,13 +183,24 @@ void Translator::variables() {
   }
   for (Index b = 0; b < m_.groupBlocks.size(); ++b) {
     if (!m_.groupBlocks[b].isLeaderBlock) continue;
-    const model::GroupBlock& block = m_.groupBlocks[b];
-    std::vector<std::string> names;
-    for (const model::Robot& r : m_.robots) names.push_back(r.name);
-    names.push_back("none");
-    auto none = static_cast<std::int32_t>(m_.robots.size());
-    leader_[b] = addVar("leader." + m_.services[block.service].name + "." + std::to_string(b), 0, none, none, ir::kNoRobot,
-                        std::move(names));
+    leaderBlocks_.push_back(b);
+    Index team = m_.groupBlocks[b].team;
+    std::string tag = m_.services[m_.groupBlocks[b].service].name + "." + std::to_string(b);
+    // Failure detection only matters when a leader can fail or its heartbeats can be lost.
+    bool detect = crashBudget(team) > 0 || loseHeartbeats_;
+    for (Index c : candidates(b)) {
+      auto robot = static_cast<std::int32_t>(c);
+      const std::string& name = m_.robots[c].name;
+      vars_[c].leads[b] = addVar(name + ".leads." + tag, 0, 1, 0, robot);
+      if (detect) {
+        vars_[c].silence[b] = addVar(name + ".silence." + tag, 0, timeoutPeriods(b), 0, robot);
+        out_.variables.back().isBool = false;
+      }
+      if (loseHeartbeats_) {
+        vars_[c].lossRun[b] = addVar(name + ".lost." + tag, 0, static_cast<std::int32_t>(m_.assumptions.lossBurst), 0, robot);
+        out_.variables.back().isBool = false;
+      }
+    }
   }
 }
 
@@ -379,29 +398,26 @@ void Translator::walk(Index robot, std::size_t planIndex, std::size_t at, Path p
     case Instr::Kind::Groups: {
       const model::GroupBlock& block = m_.groupBlocks[in.block];
       if (block.isLeaderBlock) {
-        ir::VarId leader = leader_.at(in.block);
-        Expr elected = electedLeader(in.block);
         std::size_t leaderArm = in.next, othersArm = in.next;
         for (std::size_t a = 0; a < block.arms.size(); ++a) {
           if (block.arms[a].kind == model::GroupArm::Kind::Leader) leaderArm = in.arms[a];
           if (block.arms[a].kind == model::GroupArm::Kind::Others) othersArm = in.arms[a];
         }
-        bool candidate = false;
-        for (const model::GroupArm& arm : block.arms) {
-          if (arm.kind == model::GroupArm::Kind::Leader) {
-            candidate = std::find(arm.candidates.begin(), arm.candidates.end(), robot) != arm.candidates.end();
-          }
+        // The group starts together (synchronised start): whoever forms it first runs the election,
+        // and every member agrees on its result, the best live candidate, when nobody leads yet.
+        auto electedIs = [&](Index c) {
+          return Expr::binary(Op::Or, Expr::var(vars_[c].leads.at(in.block)),
+                              ir::conjunction({noLeader(in.block), eq(bestCandidate(in.block), static_cast<std::int32_t>(c))}));
+        };
+        for (Index c : candidates(in.block)) path.updates.push_back({vars_[c].leads.at(in.block), electedIs(c)});
+        if (vars_[robot].leads.count(in.block) != 0) {
+          Path leading = path;
+          leading.guard.push_back(electedIs(robot));
+          leading.words.push_back("leads the group");
+          finish(robot, planIndex, start, leaderArm, std::move(leading));
+          path.guard.push_back(lnot(electedIs(robot)));
         }
-        if (candidate) {
-          Path lead = path;
-          lead.guard.push_back(eq(elected, static_cast<std::int32_t>(robot)));
-          lead.updates.push_back({leader, Expr::constant(static_cast<std::int32_t>(robot))});
-          lead.words.push_back("is elected leader");
-          finish(robot, planIndex, start, leaderArm, std::move(lead));
-          path.guard.push_back(lnot(eq(elected, static_cast<std::int32_t>(robot))));
-        }
-        path.updates.push_back({leader, std::move(elected)});
-        path.words.push_back("follows the elected leader");
+        path.words.push_back("follows the leader");
         return finish(robot, planIndex, start, othersArm, std::move(path));
       }
       bool any = false;

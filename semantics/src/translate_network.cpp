@@ -148,66 +148,156 @@ void Translator::crashRules() {
   }
 }
 
-// The live candidate the block's algorithm prefers, or "none".
-Expr Translator::bestCandidate(Index b) const {
-  const model::GroupBlock& block = m_.groupBlocks[b];
-  std::vector<Index> candidates;
-  for (const model::GroupArm& arm : block.arms) {
-    if (arm.kind == model::GroupArm::Kind::Leader) candidates = arm.candidates;
+const std::vector<Index>& Translator::candidates(Index b) const {
+  for (const model::GroupArm& arm : m_.groupBlocks[b].arms) {
+    if (arm.kind == model::GroupArm::Kind::Leader) return arm.candidates;
   }
-  if (block.leader.algorithm == strategy::LeaderSelection::Algorithm::Bully) std::reverse(candidates.begin(), candidates.end());
-  Expr best = Expr::constant(static_cast<std::int32_t>(m_.robots.size()));  // none
-  for (auto it = candidates.rbegin(); it != candidates.rend(); ++it) {
+  static const std::vector<Index> none;
+  return none;
+}
+
+// How many heartbeat periods a robot waits before it suspects the leader (at least one).
+std::int32_t Translator::timeoutPeriods(Index b) const {
+  const model::LeaderConfig& c = m_.groupBlocks[b].leader;
+  return static_cast<std::int32_t>(std::max<std::int64_t>(1, c.timeoutMillis / std::max<std::int64_t>(1, c.heartbeatMillis)));
+}
+
+// The live candidate the block's algorithm prefers, or "none" (the number of robots).
+Expr Translator::bestCandidate(Index b) const {
+  std::vector<Index> order = candidates(b);
+  if (m_.groupBlocks[b].leader.algorithm == strategy::LeaderSelection::Algorithm::Bully) std::reverse(order.begin(), order.end());
+  Expr best = Expr::constant(static_cast<std::int32_t>(m_.robots.size()));
+  for (auto it = order.rbegin(); it != order.rend(); ++it) {
     best = Expr::ite(alive(*it), Expr::constant(static_cast<std::int32_t>(*it)), std::move(best));
   }
   return best;
 }
 
-// The current leader if it is alive, else the best live candidate.
-Expr Translator::electedLeader(Index b) const {
-  ir::VarId leader = leader_.at(b);
-  std::vector<Expr> valid;
-  for (const model::GroupArm& arm : m_.groupBlocks[b].arms) {
-    if (arm.kind != model::GroupArm::Kind::Leader) continue;
-    for (Index c : arm.candidates) valid.push_back(ir::conjunction({eq(Expr::var(leader), static_cast<std::int32_t>(c)), alive(c)}));
-  }
-  return Expr::ite(ir::disjunction(std::move(valid)), Expr::var(leader), bestCandidate(b));
+Expr Translator::noLeader(Index b) const {
+  std::vector<Expr> leading;
+  for (Index c : candidates(b)) leading.push_back(ir::conjunction({alive(c), Expr::var(vars_[c].leads.at(b))}));
+  return lnot(ir::disjunction(std::move(leading)));
 }
 
-// A failed leader is replaced by the best live candidate still inside the block: it notices (the
-// failure detector of the strategy's leader selection) and moves from `others` to the leader's part.
+// A live candidate in the `others` part of the block, where it listens for the leader's heartbeats.
+Expr Translator::waitingForHeartbeats(Index robot, Index b) const {
+  Index team = m_.robots[robot].team;
+  std::vector<Expr> inOthers;
+  for (std::size_t p = 0; p < programs_[team].size(); ++p) {
+    if (!vars_[robot].pc[p]) continue;
+    for (const BlockRange& range : programs_[team][p].blocks) {
+      if (range.block != b) continue;
+      const model::GroupBlock& block = m_.groupBlocks[b];
+      for (std::size_t a = 0; a < block.arms.size(); ++a) {
+        if (block.arms[a].kind != model::GroupArm::Kind::Others) continue;
+        Expr pc = Expr::var(*vars_[robot].pc[p]);
+        inOthers.push_back(ir::conjunction({Expr::binary(Op::Ge, pc, Expr::constant(static_cast<std::int32_t>(range.armFirst[a]))),
+                                            Expr::binary(Op::Lt, pc, Expr::constant(static_cast<std::int32_t>(range.armEnd(a))))}));
+      }
+    }
+  }
+  return ir::conjunction({alive(robot), lnot(Expr::var(vars_[robot].leads.at(b))), ir::disjunction(std::move(inOthers))});
+}
+
+// One heartbeat period of a leader block (specs/semantics.md, "Leaders"): every live leader sends a
+// heartbeat; each waiting candidate hears one unless it is lost (at most `burst` in a row); one that
+// hears nothing counts a silent period. A leader that hears a better leader steps down. One rule per
+// set of candidates whose heartbeat is lost.
+void Translator::roundRules(Index b) {
+  const std::vector<Index>& cands = candidates(b);
+  if (cands.empty() || !vars_[cands.front()].silence.count(b)) return;
+  std::int32_t k = timeoutPeriods(b);
+  auto burst = static_cast<std::int32_t>(m_.assumptions.lossBurst);
+  std::vector<Index> order = cands;  // most preferred first
+  if (m_.groupBlocks[b].leader.algorithm == strategy::LeaderSelection::Algorithm::Bully) std::reverse(order.begin(), order.end());
+  std::size_t subsets = loseHeartbeats_ ? (std::size_t{1} << cands.size()) : 1;
+  std::vector<Expr> anyWaiting;
+  for (Index c : cands) anyWaiting.push_back(waitingForHeartbeats(c, b));
+  for (std::size_t lost = 0; lost < subsets; ++lost) {
+    ir::Rule round;
+    round.name = "heartbeat." + std::to_string(b) + "." + std::to_string(lost);
+    round.kind = ir::RuleKind::Timer;
+    round.origin = origin(m_.groupBlocks[b].at);
+    std::vector<Expr> guard{ir::disjunction(anyWaiting)};
+    std::vector<ir::Assignment> updates;
+    std::string lostNames;
+    for (std::size_t i = 0; i < cands.size(); ++i) {
+      Index c = cands[i];
+      const RobotVars& v = vars_[c];
+      Expr silence = Expr::var(v.silence.at(b));
+      Expr waiting = waitingForHeartbeats(c, b);
+      Expr louder = Expr::binary(Op::Min, Expr::binary(Op::Add, silence, Expr::constant(1)), Expr::constant(k));
+      std::vector<Expr> others;
+      for (Index d : cands) {
+        if (d != c) others.push_back(ir::conjunction({alive(d), Expr::var(vars_[d].leads.at(b))}));
+      }
+      Expr heard = ir::disjunction(std::move(others));
+      bool isLost = (lost >> i) & 1u;
+      if (isLost) {
+        lostNames += (lostNames.empty() ? "" : ", ") + m_.robots[c].name;
+        guard.push_back(waiting);
+        guard.push_back(heard);  // a heartbeat that was never sent cannot be lost
+        guard.push_back(Expr::binary(Op::Lt, Expr::var(v.lossRun.at(b)), Expr::constant(burst)));
+        updates.push_back({v.silence.at(b), louder});
+        updates.push_back({v.lossRun.at(b), Expr::binary(Op::Add, Expr::var(v.lossRun.at(b)), Expr::constant(1))});
+        continue;
+      }
+      updates.push_back({v.silence.at(b), Expr::ite(waiting, Expr::ite(heard, Expr::constant(0), louder), Expr::constant(0))});
+      if (v.lossRun.count(b)) updates.push_back({v.lossRun.at(b), Expr::ite(heard, Expr::constant(0), Expr::var(v.lossRun.at(b)))});
+      // Bully: a leader that hears a more preferred leader steps down.
+      std::vector<Expr> better;
+      for (Index d : order) {
+        if (d == c) break;
+        better.push_back(ir::conjunction({alive(d), Expr::var(vars_[d].leads.at(b))}));
+      }
+      if (!better.empty()) {
+        ir::VarId leads = v.leads.at(b);
+        updates.push_back({leads, ir::conjunction({Expr::var(leads), lnot(ir::disjunction(std::move(better)))})});
+      }
+    }
+    round.label = lostNames.empty() ? "a heartbeat period passes" : "a heartbeat period passes; lost on the way to " + lostNames;
+    round.guard = ir::conjunction(std::move(guard));
+    round.branches.push_back({1.0, std::move(updates)});
+    round.weaklyFair = lostNames.empty();
+    addRule(std::move(round));
+  }
+}
+
+// A candidate that heard no heartbeat for the failure timeout suspects the leader and takes over
+// (moving from `others` to the leader's part of the block).
 void Translator::leaderRules() {
-  for (Index t = 0; t < programs_.size(); ++t) {
+  for (Index b : leaderBlocks_) {
+    roundRules(b);
+    const model::GroupBlock& block = m_.groupBlocks[b];
+    Index t = block.team;
+    std::size_t leaderArm = 0, othersArm = SIZE_MAX;
+    for (std::size_t a = 0; a < block.arms.size(); ++a) {
+      if (block.arms[a].kind == model::GroupArm::Kind::Leader) leaderArm = a;
+      if (block.arms[a].kind == model::GroupArm::Kind::Others) othersArm = a;
+    }
+    if (othersArm == SIZE_MAX) continue;
     for (std::size_t p = 0; p < programs_[t].size(); ++p) {
       for (const BlockRange& range : programs_[t][p].blocks) {
-        const model::GroupBlock& block = m_.groupBlocks[range.block];
-        if (!block.isLeaderBlock) continue;
-        std::size_t leaderArm = 0, othersArm = SIZE_MAX;
-        for (std::size_t a = 0; a < block.arms.size(); ++a) {
-          if (block.arms[a].kind == model::GroupArm::Kind::Leader) leaderArm = a;
-          if (block.arms[a].kind == model::GroupArm::Kind::Others) othersArm = a;
-        }
-        if (othersArm == SIZE_MAX) continue;
-        ir::VarId leader = leader_.at(range.block);
+        if (range.block != b) continue;
         std::size_t leaderEntry = programs_[t][p].code[range.last].arms[leaderArm];
-        for (Index c : block.arms[leaderArm].candidates) {
-          if (!vars_[c].alive && !vars_[c].pc[p]) continue;
-          bool anyCrash = false;
-          for (Index r : m_.teams[t].robots) anyCrash = anyCrash || vars_[r].alive.has_value();
-          if (!anyCrash || !vars_[c].pc[p]) continue;
-          Expr pc = Expr::var(*vars_[c].pc[p]);
+        for (Index c : candidates(b)) {
+          const RobotVars& v = vars_[c];
+          if (!v.pc[p] || !v.silence.count(b)) continue;
+          Expr pc = Expr::var(*v.pc[p]);
           ir::Rule take;
           take.name = m_.robots[c].name + ".takes_over." + std::to_string(range.first);
           take.robot = static_cast<std::int32_t>(c);
-          take.label = "notices the leader failed and takes over as leader";
+          take.label = "suspects the leader (no heartbeat for the failure timeout) and takes over";
           take.origin = origin(block.arms[leaderArm].at);
-          take.guard = ir::conjunction({alive(c),
+          take.guard = ir::conjunction({alive(c), lnot(Expr::var(v.leads.at(b))),
                                         Expr::binary(Op::Ge, pc, Expr::constant(static_cast<std::int32_t>(range.armFirst[othersArm]))),
                                         Expr::binary(Op::Lt, pc, Expr::constant(static_cast<std::int32_t>(range.armEnd(othersArm)))),
-                                        eq(electedLeader(range.block), static_cast<std::int32_t>(c)),
-                                        Expr::binary(Op::Ne, Expr::var(leader), Expr::constant(static_cast<std::int32_t>(c)))});
-          take.branches.push_back({1.0, {{leader, Expr::constant(static_cast<std::int32_t>(c))},
-                                         {*vars_[c].pc[p], Expr::constant(static_cast<std::int32_t>(leaderEntry))}}});
+                                        Expr::binary(Op::Ge, Expr::var(v.silence.at(b)), Expr::constant(timeoutPeriods(b)))});
+          std::vector<ir::Assignment> updates{{v.leads.at(b), Expr::constant(1)},
+                                              {v.silence.at(b), Expr::constant(0)},
+                                              {*v.pc[p], Expr::constant(static_cast<std::int32_t>(leaderEntry))}};
+          if (v.lossRun.count(b)) updates.push_back({v.lossRun.at(b), Expr::constant(0)});
+          take.branches.push_back({1.0, std::move(updates)});
           take.weaklyFair = true;
           addRule(std::move(take));
         }
@@ -275,8 +365,8 @@ std::optional<Expr> Translator::stateFormula(const model::Ltl& f) const {
       case model::Ltl::Attribute::Alive: atom = alive(r); break;
       case model::Ltl::Attribute::Leader: {
         std::vector<Expr> leads;
-        for (const auto& [b, var] : leader_) leads.push_back(eq(Expr::var(var), static_cast<std::int32_t>(r)));
-        atom = ir::disjunction(std::move(leads));
+        for (const auto& [b, var] : v.leads) leads.push_back(Expr::var(var));
+        atom = ir::conjunction({alive(r), ir::disjunction(std::move(leads))});
         break;
       }
       case model::Ltl::Attribute::Mode: {
@@ -367,9 +457,22 @@ void Translator::invariants() {
     }
     out_.invariants.push_back({p.name, origin(p.at), std::move(*holds)});
   }
-  if (wants("unique_leader") && !leader_.empty()) {
-    diags_.warning({}, "unique_leader is not checked yet: the distributed leader election (heartbeats, timeouts, "
-                       "per-robot beliefs) is not translated; see specs/semantics.md");
+  if (wants("unique_leader")) {
+    for (Index b : leaderBlocks_) {
+      std::vector<Expr> pairs;
+      const std::vector<Index>& cands = candidates(b);
+      for (std::size_t i = 0; i < cands.size(); ++i) {
+        for (std::size_t j = i + 1; j < cands.size(); ++j) {
+          pairs.push_back(lnot(ir::conjunction({alive(cands[i]), Expr::var(vars_[cands[i]].leads.at(b)), alive(cands[j]),
+                                                Expr::var(vars_[cands[j]].leads.at(b))})));
+        }
+      }
+      ir::Invariant inv;
+      inv.name = "unique_leader[" + m_.services[m_.groupBlocks[b].service].name + "]";
+      inv.origin = origin(m_.groupBlocks[b].at);
+      inv.holds = ir::conjunction(std::move(pairs));
+      out_.invariants.push_back(std::move(inv));
+    }
   }
 }
 

@@ -30,6 +30,9 @@ class Translator {
     std::map<Index, ir::VarId> event;          // per event index of the team
     std::map<Index, ir::VarId> view, msg;      // per topic
     std::map<std::string, ir::VarId> knows;    // knowledge item -> how many of its facts the robot holds
+    std::map<Index, ir::VarId> leads;          // leader block -> the robot believes it is the leader
+    std::map<Index, ir::VarId> silence;        // leader block -> heartbeat periods without a heartbeat
+    std::map<Index, ir::VarId> lossRun;        // leader block -> heartbeats lost in a row
   };
 
   // Where robots of a team work in a group service: (plan index, instruction).
@@ -75,8 +78,12 @@ class Translator {
   [[nodiscard]] std::string origin(const SourceRange& r) const;
   [[nodiscard]] bool topicRead(Index team, Index topic) const;
   [[nodiscard]] std::int32_t crashBudget(Index team) const;
-  [[nodiscard]] Expr electedLeader(Index block) const;
   [[nodiscard]] Expr bestCandidate(Index block) const;
+  [[nodiscard]] const std::vector<Index>& candidates(Index block) const;
+  [[nodiscard]] Expr noLeader(Index block) const;
+  [[nodiscard]] Expr waitingForHeartbeats(Index robot, Index block) const;
+  [[nodiscard]] std::int32_t timeoutPeriods(Index block) const;
+  void roundRules(Index block);
   void addRule(ir::Rule rule) { out_.rules.push_back(std::move(rule)); }
   [[nodiscard]] bool wants(const std::string& check) const {
     return std::find(m_.assumptions.checks.begin(), m_.assumptions.checks.end(), check) != m_.assumptions.checks.end();
@@ -91,9 +98,9 @@ class Translator {
   std::vector<std::vector<PlanProgram>> programs_;  // per team, per plan
   std::vector<std::optional<ir::VarId>> crashed_;   // per team
   std::map<Index, ir::VarId> channel_;              // per reliable topic
-  std::map<Index, ir::VarId> leader_;               // per leader block
+  std::vector<Index> leaderBlocks_;
   std::map<std::pair<Index, std::string>, std::vector<ServiceSite>> sites_;  // (team, group service)
-  bool losePublish_ = false, loseEvents_ = false;
+  bool losePublish_ = false, loseEvents_ = false, loseHeartbeats_ = false;
   std::size_t rulesPerPoint_ = 0;
 };
 

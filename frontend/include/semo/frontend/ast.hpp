@@ -170,6 +170,8 @@ struct VerifyBlock {
   std::vector<CrashAssumption> crashes;
   std::vector<Name> losses;               // none publish events knowledge heartbeats all
   std::optional<Name> fairness;           // "fair" or "unfair"
+  std::optional<std::int64_t> lossBurst;  // assume loss burst <= N
+  SourceRange lossBurstAt;
   std::vector<Name> checks;
   std::vector<Property> properties;
   SourceRange range;

@@ -175,6 +175,7 @@ struct Assumptions {
   std::vector<std::int64_t> crashBudget;  // per team
   bool losePublish = false, loseEvents = false, loseKnowledge = false, loseHeartbeats = false;
   bool fairLoss = true;
+  std::int64_t lossBurst = 1;  // at most this many consecutive losses on one link (heartbeats)
   std::vector<std::string> checks;  // built-in properties to check (all of them if none named)
 };
 
