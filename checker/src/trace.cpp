@@ -38,7 +38,23 @@ std::string traceToText(const ir::Model& m, const Trace& t) {
       out << "       " << v.name << ": " << valueText(v, c.before) << " -> " << valueText(v, c.after) << "\n";
     }
   }
-  if (t.kind == "deadlock") out << "  then no rule is enabled, and the state is not a valid end state\n";
+  if (t.kind == "deadlock") {
+    out << "  then no rule is enabled, and the state is not a valid end state; still running:\n";
+    // Who is stuck where: every program counter that is not at its end, for live robots.
+    std::vector<std::int32_t> final = t.initial;
+    for (const Step& s : t.steps) {
+      for (const Change& c : s.changes) final[c.var] = c.after;
+    }
+    for (ir::VarId v = 0; v < final.size(); ++v) {
+      const ir::Variable& var = m.variables[v];
+      if (var.name.find(".pc.") == std::string::npos || final[v] == var.min) continue;
+      if (var.robot != ir::kNoRobot) {
+        auto alive = m.find(m.robots[static_cast<std::size_t>(var.robot)] + ".alive");
+        if (alive && final[*alive] == 0) continue;
+      }
+      out << "       " << var.name << " = " << valueText(var, final[v]) << "\n";
+    }
+  }
   if (t.kind == "invariant") out << "  then " << t.property << " does not hold\n";
   if (t.kind == "range") out << "  the last step assigns a value outside a variable's declared range (a modelling error)\n";
   return out.str();

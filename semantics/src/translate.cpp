@@ -135,7 +135,12 @@ void Translator::variables() {
         std::vector<std::string> labels;
         for (std::size_t i = 0; i < prog.code.size(); ++i) {
           const Instr& in = prog.code[i];
-          labels.push_back(i == 0 ? "done" : m_.services[in.service].name + "#" + std::to_string(i));
+          // One word per value (the IR's @values): service, instruction, and the mission line:col.
+          std::string label = i == 0 ? "done" : m_.services[in.service].name + "#" + std::to_string(i);
+          if (i != 0 && in.stmt != nullptr) {
+            label += "@" + std::to_string(in.stmt->at.begin.line) + ":" + std::to_string(in.stmt->at.begin.column);
+          }
+          labels.push_back(std::move(label));
         }
         v.pc.push_back(addVar(name + ".pc." + team.plans[p], 0, static_cast<std::int32_t>(prog.code.size()) - 1,
                               static_cast<std::int32_t>(entry), robot, std::move(labels)));

@@ -112,7 +112,8 @@ int runCheck(const CheckOptions& options) {
     } else if (p.verdict == checker::Verdict::Unknown) {
       std::cout << "  (not violated in the " << r.states << " states explored; the search was not complete)";
     } else if (p.counterexample) {
-      std::cout << "  (counterexample of " << p.counterexample->steps.size() << " steps below)";
+      std::size_t n = p.counterexample->steps.size();
+      std::cout << "  (counterexample of " << n << (n == 1 ? " step" : " steps") << " below)";
     }
     std::cout << "\n";
   }
