@@ -334,16 +334,18 @@ void Translator::defaultRules() {
 }
 
 // A property formula without temporal operators as an expression over the state, or nullopt.
-std::optional<Expr> Translator::stateFormula(const model::Ltl& f) const {
+std::optional<Expr> Translator::stateFormula(const model::Ltl& f, std::string& why) const {
   using K = model::Ltl::Kind;
   switch (f.kind) {
-    case K::Always: case K::Eventually: case K::Next: case K::Until: return std::nullopt;
+    case K::Always: case K::Eventually: case K::Next: case K::Until:
+      why = "it has nested temporal operators (the LTL engine will check it)";
+      return std::nullopt;
     case K::Not: {
-      auto a = stateFormula(*f.left);
+      auto a = stateFormula(*f.left, why);
       return a ? std::optional<Expr>(lnot(std::move(*a))) : std::nullopt;
     }
     case K::And: case K::Or: case K::Implies: {
-      auto a = stateFormula(*f.left), b = stateFormula(*f.right);
+      auto a = stateFormula(*f.left, why), b = stateFormula(*f.right, why);
       if (!a || !b) return std::nullopt;
       Op op = f.kind == K::And ? Op::And : f.kind == K::Or ? Op::Or : Op::Implies;
       return Expr::binary(op, std::move(*a), std::move(*b));
@@ -377,13 +379,22 @@ std::optional<Expr> Translator::stateFormula(const model::Ltl& f) const {
         break;
       }
       case model::Ltl::Attribute::Value: {
-        if (f.valueKind != model::ValueKind::Topic || !f.op) return std::nullopt;
+        if (f.valueKind != model::ValueKind::Topic || !f.op) {
+          why = "'" + f.var + "' is a sensed value or knowledge, which the model does not keep";
+          return std::nullopt;
+        }
         Index tp = m_.findTopic(m_.robots[r].team, f.var);
         if (tp == model::kNone) tp = m_.findTopic(f.subject == model::Ltl::Subject::Team ? f.subjectIndex : m_.robots[r].team, f.var);
         auto view = tp == model::kNone ? v.view.end() : v.view.find(tp);
-        if (view == v.view.end()) return std::nullopt;
+        if (view == v.view.end()) {
+          why = "robot '" + m_.robots[r].name + "' keeps no value of topic '" + f.var + "' (its team never reads it)";
+          return std::nullopt;
+        }
         std::int32_t symbol = symbolValue(tp, f.rhs);
-        if (symbol < 0 || (*f.op != model::RelOp::Eq && *f.op != model::RelOp::Ne)) return std::nullopt;
+        if (symbol < 0 || (*f.op != model::RelOp::Eq && *f.op != model::RelOp::Ne)) {
+          why = "topic '" + f.var + "' is compared with a value it never carries, or with an ordering";
+          return std::nullopt;
+        }
         atom = eq(Expr::var(view->second), symbol);
         if (*f.op == model::RelOp::Ne) atom = lnot(std::move(*atom));
         break;
@@ -449,10 +460,10 @@ void Translator::invariants() {
   for (const model::Property& p : m_.properties) {
     // `always p` with p free of temporal operators is an invariant; the rest needs the LTL engine.
     std::optional<Expr> holds;
-    if (p.formula->kind == model::Ltl::Kind::Always) holds = stateFormula(*p.formula->left);
+    std::string why = "it is not of the form 'always <state formula>' (the LTL engine will check it)";
+    if (p.formula->kind == model::Ltl::Kind::Always) holds = stateFormula(*p.formula->left, why);
     if (!holds) {
-      diags_.warning(p.at, "property '" + p.name + "' is not checked by 'check': only 'always' over modes, alive, "
-                           "leaders and topics is a safety invariant; the rest needs the LTL engine");
+      diags_.warning(p.at, "property '" + p.name + "' is not checked by 'check': " + why);
       continue;
     }
     out_.invariants.push_back({p.name, origin(p.at), std::move(*holds)});

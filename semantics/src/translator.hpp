@@ -65,7 +65,8 @@ class Translator {
   void leaderRules();
   void defaultRules();
   void invariants();
-  [[nodiscard]] std::optional<Expr> stateFormula(const model::Ltl& f) const;
+  // A property without temporal operators as a state expression; else nullopt and `why`.
+  [[nodiscard]] std::optional<Expr> stateFormula(const model::Ltl& f, std::string& why) const;
 
   ir::VarId addVar(std::string name, std::int32_t min, std::int32_t max, std::int32_t init, std::int32_t robot,
                    std::vector<std::string> valueNames = {});
