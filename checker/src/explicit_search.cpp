@@ -142,12 +142,18 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
   std::size_t levelEnd = 1;
   bool stopped = false, exhausted = false;
   for (std::size_t i = 0;; ++i) {
+    // Before the exhaustion test: a range error in the last queued state leaves its successor
+    // unexplored, so the search is not complete.
+    if (stopped) break;
     if (i == store.size()) {
       exhausted = true;
       break;
     }
     // Once every property is violated there is nothing left to prove.
-    if (stopped || (open == 0 && !result.properties.empty())) break;
+    if (open == 0 && !result.properties.empty()) {
+      result.limitReached = "every property is violated";
+      break;
+    }
     if (i == levelEnd) {
       ++result.depth;
       levelEnd = store.size();
@@ -200,11 +206,12 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
       --open;
     }
     result.peakBytes = std::max(result.peakBytes, store.bytes());
-    if (!stopped && store.size() >= limits.maxStates) {
+    bool more = i + 1 < store.size();  // a limit reached after the last state changes nothing
+    if (!stopped && more && store.size() >= limits.maxStates) {
       result.limitReached = "--max-states " + std::to_string(limits.maxStates) + " reached";
       stopped = true;
     }
-    if (!stopped && store.bytes() >= limits.maxMemoryBytes) {
+    if (!stopped && more && store.bytes() >= limits.maxMemoryBytes) {
       result.limitReached = "--max-memory " + std::to_string(limits.maxMemoryBytes >> 20) + " MiB reached";
       stopped = true;
     }

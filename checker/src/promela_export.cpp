@@ -15,6 +15,9 @@
 //     is enabled exactly in the states that violate one, the initial state included, and its step
 //     leads back to the same state. Asserting before the loop instead would add a stored state (the
 //     process at its first location), and asserting after each update would miss the initial state;
+//   * SPIN leaves a variable that is only ever assigned, never read, out of the state vector (its
+//     dead-variable elimination, off only with `spin -o2`); a never-enabled option reads every such
+//     variable, so that the plain `spin -a` keeps them, as semo does;
 //   * deadlock: when the model has valid_end, an option `atomic { timeout -> assert valid_end }`
 //     (timeout holds exactly when no rule's guard does). The loop is labelled `end` in every case, so
 //     a state without successors is never an "invalid end state" of its own: without valid_end a
@@ -73,14 +76,19 @@ const std::set<std::string>& reservedWords() {
 class Names {
  public:
   std::string fresh(const std::string& wanted) {
+    // "robot.mode" -> robot_mode, "fork[2]" -> fork_2, "formation[Search (Burger)]" -> formation_Search_Burger
     std::string base;
+    bool replaced = false;  // the last character of `base` stands for a run of other characters
     for (char c : wanted) {
       if (std::isalnum(static_cast<unsigned char>(c)) || c == '_') {
         base += c;
-      } else if (c != ']') {
-        base += '_';  // "robot.mode" -> robot_mode, "fork[2]" -> fork_2
+        replaced = false;
+      } else if (!replaced) {
+        base += '_';
+        replaced = true;
       }
     }
+    if (replaced && base.size() > 1) base.pop_back();
     if (base.empty() || std::isdigit(static_cast<unsigned char>(base.front()))) base = "v" + base;
     std::string name = base;
     for (int k = 2; used_.count(name) != 0 || reservedWords().count(name) != 0; ++k) name = base + "_" + std::to_string(k);
@@ -161,7 +169,11 @@ class Writer {
       default: return 10;  // variables, and what is written in its own parentheses
     }
   }
-  static bool divisorIsNonzeroConstant(const Expr& e) { return e.args[1].op == Op::Const && e.args[1].value != 0; }
+  static bool divisorIsNonzeroConstant(const Expr& e) {
+    const Expr* d = &e.args[1];
+    while (d->op == Op::Neg) d = &d->args[0];  // -2 is Neg(2) in the IR
+    return d->op == Op::Const && d->value != 0;
+  }
 
   static const char* symbol(Op op) {
     switch (op) {
@@ -191,12 +203,12 @@ class Writer {
     switch (e.op) {
       case Op::Const: return constant(e.value);
       case Op::Var: return varNames_.at(static_cast<std::size_t>(e.value));
-      case Op::Not: return cat("!", expr(e.args[0], 9));
+      case Op::Not: return negation(e.args[0]);
       case Op::Neg: {
         std::string a = expr(e.args[0], 9);
         return a.front() == '-' ? cat("-(", a, ")") : cat("-", a);  // never "--": that is decrement
       }
-      case Op::Implies: return cat("(!", expr(e.args[0], 9), " || ", expr(e.args[1], 3), ")");
+      case Op::Implies: return cat("(", negation(e.args[0]), " || ", expr(e.args[1], 3), ")");
       case Op::Ite: return cat("(", expr(e.args[0]), " -> ", expr(e.args[1]), " : ", expr(e.args[2]), ")");
       case Op::Min:
       case Op::Max: {
@@ -215,6 +227,12 @@ class Writer {
         return cat(expr(e.args[0], p), " ", symbol(e.op), " ", expr(e.args[1], p + 1));
       }
     }
+  }
+
+  // !e, never written "!!": that is a Promela send operator.
+  std::string negation(const Expr& e) const {
+    std::string a = expr(e, 9);
+    return a.front() == '!' ? cat("!(", a, ")") : cat("!", a);
   }
 
   std::string guard(const Expr& e) const { return e.isTrue() ? "true" : expr(e); }
@@ -277,8 +295,27 @@ class Writer {
     for (const ir::Invariant& inv : m_.invariants) invariantFlags_.push_back(names_.fresh("prop_" + inv.name));
     if (m_.validEnd) validEndFlag_ = names_.fresh("prop_deadlock_freedom");
     for (std::size_t t = 0; t < temporaries; ++t) temporaries_.push_back(names_.fresh("semo_old" + std::to_string(t)));
+    // Variables that no guard, update, invariant or valid_end reads: SPIN would leave them out of
+    // the state vector as write-only (unless `spin -o2`), and then store fewer states than semo.
+    std::vector<bool> read(m_.variables.size(), false);
+    auto mark = [&](const Expr& e, auto& self) -> void {
+      if (e.op == Op::Var) read.at(static_cast<std::size_t>(e.value)) = true;
+      for (const Expr& a : e.args) self(a, self);
+    };
+    for (const ir::Rule& r : m_.rules) {
+      mark(r.guard, mark);
+      for (const ir::Branch& b : r.branches) {
+        for (const ir::Assignment& a : b.assignments) mark(a.value, mark);
+      }
+    }
+    for (const ir::Invariant& inv : m_.invariants) mark(inv.holds, mark);
+    if (m_.validEnd) mark(*m_.validEnd, mark);
+    for (std::size_t v = 0; v < read.size(); ++v) {
+      if (!read[v]) unread_.push_back(v);
+    }
+    if (!unread_.empty()) readSink_ = names_.fresh("semo_read");
     processName_ = names_.fresh("semo_model");
-    if (temporaries == 0 && invariantFlags_.empty() && validEndFlag_.empty()) return;
+    if (temporaries == 0 && invariantFlags_.empty() && validEndFlag_.empty() && unread_.empty()) return;
     out_ << "/* ---- hidden: not part of the state vector */\n";
     for (std::size_t i = 0; i < invariantFlags_.size(); ++i) {
       out_ << "hidden byte " << invariantFlags_[i] << ";\t/* property '" << commentText(m_.invariants[i].name) << "'";
@@ -289,6 +326,7 @@ class Writer {
       out_ << "hidden byte " << validEndFlag_ << ";\t/* property 'deadlock_freedom': valid_end where no rule is enabled */\n";
     }
     for (const std::string& t : temporaries_) out_ << "hidden int " << t << ";\t/* an old value, for a simultaneous assignment */\n";
+    if (!readSink_.empty()) out_ << "hidden int " << readSink_ << ";\t/* see the last option of the loop */\n";
     out_ << "\n";
   }
 
@@ -313,16 +351,39 @@ class Writer {
     for (std::size_t k = 0; k < late.size(); ++k) out.push_back(temporaries_[k] + " = " + expr(b.assignments[late[k]].value));
     for (std::size_t i = 0; i < b.assignments.size(); ++i) {
       if (std::find(late.begin(), late.end(), i) != late.end()) continue;
-      out.push_back(varNames_[b.assignments[i].var] + " = " + expr(b.assignments[i].value));
+      const ir::Assignment& a = b.assignments[i];
+      bool boolConstant = m_.variables[a.var].isBool && a.value.op == Op::Const && (a.value.value == 0 || a.value.value == 1);
+      out.push_back(cat(varNames_[a.var], " = ", boolConstant ? (a.value.value != 0 ? "true" : "false") : expr(a.value)));
     }
     for (std::size_t k = 0; k < late.size(); ++k) out.push_back(varNames_[b.assignments[late[k]].var] + " = " + temporaries_[k]);
     if (out.empty()) out.emplace_back("skip");
     return out;
   }
 
-  std::string assertValidEnd() const {
-    return cat(validEndFlag_, " = ", expr(*m_.validEnd, 3), "; assert(", validEndFlag_, ")");
+  // Whether `e` is always 0 or 1.
+  bool isBoolean(const Expr& e) const {
+    switch (e.op) {
+      case Op::Const: return e.value == 0 || e.value == 1;
+      case Op::Var: {
+        const ir::Variable& v = m_.variables.at(static_cast<std::size_t>(e.value));
+        return v.min >= 0 && v.max <= 1;
+      }
+      case Op::Not: case Op::Eq: case Op::Ne: case Op::Lt: case Op::Le: case Op::Gt: case Op::Ge:
+      case Op::And: case Op::Or: case Op::Implies:
+        return true;
+      case Op::Ite: return isBoolean(e.args[1]) && isBoolean(e.args[2]);
+      default: return false;
+    }
   }
+
+  // `flag = e; assert(flag)`: the flags are bytes, so a condition that may be another non-zero
+  // value (256 would be stored as 0) is written `e != 0`.
+  std::string assertion(const std::string& flag, const Expr& e) const {
+    std::string value = isBoolean(e) ? expr(e, 3) : expr(Expr::binary(Op::Ne, e, Expr::constant(0)));
+    return cat(flag, " = ", value, "; assert(", flag, ")");
+  }
+
+  std::string assertValidEnd() const { return assertion(validEndFlag_, *m_.validEnd); }
 
   void option(const std::string& step, const std::string& guardText, const std::vector<std::string>& body) {
     std::string oneLine = "  :: " + step + " { " + guardText + " -> ";
@@ -350,7 +411,7 @@ class Writer {
       std::vector<std::string> body;
       for (std::size_t i = 0; i < m_.invariants.size(); ++i) {
         const ir::Invariant& inv = m_.invariants[i];
-        body.push_back(cat(invariantFlags_[i], " = ", expr(inv.holds, 3), "; assert(", invariantFlags_[i], ")"));
+        body.push_back(assertion(invariantFlags_[i], inv.holds));
       }
       if (m_.validEnd) {
         // Here `timeout` is false (this option is enabled), so the deadlock check is done here.
@@ -360,7 +421,9 @@ class Writer {
                            assertValidEnd(), "\n         :: else -> skip\n         fi"));
       }
       out_ << "  /* an invariant fails in this state (every state is checked, the initial one too) */\n";
-      std::string g = cat("!", expr(ir::conjunction(all), 9));
+      Expr holds = ir::conjunction(all);
+      // As a guard only the truth value counts, so !!e is written e.
+      std::string g = holds.op == Op::Not ? expr(holds.args[0]) : negation(holds);
       out_ << "  :: d_step { " << g << " ->\n";
       for (std::size_t i = 0; i < body.size(); ++i) out_ << "       " << body[i] << (i + 1 < body.size() ? ";\n" : "\n");
       out_ << "     }\n";
@@ -389,6 +452,18 @@ class Writer {
       out_ << "  /* no rule is enabled: a deadlock unless valid_end holds */\n";
       out_ << "  :: atomic { timeout -> " << assertValidEnd() << " }\n";
     }
+    if (!unread_.empty()) {
+      any = true;
+      std::vector<std::string> body;
+      std::string names;
+      for (std::size_t v : unread_) {
+        body.push_back(cat(readSink_, " = ", varNames_[v]));
+        names += cat(names.empty() ? "" : ", ", commentText(m_.variables[v].name));
+      }
+      out_ << "  /* never taken: it reads the variables nothing else reads (" << names << "), which SPIN\n"
+           << "     would otherwise leave out of the state vector as write-only; semo's states include them */\n";
+      option("d_step", "false", body);
+    }
     if (!any) out_ << "  :: false  /* the model has no rule */\n";
     out_ << "  od\n}\n";
   }
@@ -401,6 +476,8 @@ class Writer {
   std::string validEndFlag_;
   std::vector<std::string> temporaries_;
   std::string processName_;
+  std::vector<std::size_t> unread_;  // variables nothing reads
+  std::string readSink_;
 };
 
 }  // namespace
