@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "semo/semantics/ir_text.hpp"
 
@@ -188,7 +189,10 @@ class Reader {
     } else if (isWord("invariant")) {
       advance();
       Invariant inv;
+      const Token& nameToken = peek();
       inv.name = declaredName("an invariant name").first;
+      // Verdicts and JSON output are keyed by name: two invariants of one name would be ambiguous.
+      if (!invariantNames_.insert(inv.name).second) fail(nameToken, "invariant '" + inv.name + "' is declared twice");
       attributes([&](const Token& key, const std::string& value) {
         if (key.text == "origin") return inv.origin = value, true;
         return false;
@@ -317,7 +321,9 @@ class Reader {
   void rule() {
     advance();
     Rule r;
+    const Token& nameToken = peek();
     r.name = declaredName("a rule name").first;
+    if (!ruleNames_.insert(r.name).second) fail(nameToken, "rule '" + r.name + "' is declared twice");
     attributes([&](const Token& key, const std::string& value) {
       if (key.text == "robot") return r.robot = robot(key, value), true;
       if (key.text == "origin") return r.origin = value, true;
@@ -360,6 +366,7 @@ class Reader {
         } while (accept(","));
       }
       r.branches.push_back(std::move(b));
+      if (r.branches.size() > 255) fail(peek(), "a rule has at most 255 outcomes");  // traces keep the outcome in 8 bits
     } while (accept("+"));
     if (std::fabs(total - 1.0) > 1e-9) {  // a single outcome too: `-> 0.5 : x' = 1;` is an error
       fail(peek(), "the probabilities of rule '" + r.name + "' add up to " + std::to_string(total) + ", not 1");
@@ -443,6 +450,7 @@ class Reader {
   Model model_;
   std::unordered_map<std::string, VarId> varIndex_;
   std::unordered_map<std::string, std::int32_t> robotIndex_;
+  std::unordered_set<std::string> ruleNames_, invariantNames_;
 };
 
 }  // namespace
