@@ -140,6 +140,7 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
   checkInvariants(values.data(), 0);
 
   std::size_t levelEnd = 1;
+  double nextReport = 1.0;
   bool stopped = false, exhausted = false;
   for (std::size_t i = 0;; ++i) {
     // Before the exhaustion test: a range error in the last queued state leaves its successor
@@ -206,6 +207,13 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
       --open;
     }
     result.peakBytes = std::max(result.peakBytes, store.bytes());
+    if (limits.onProgress && (i & 0x3fffu) == 0) {
+      double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (elapsed >= nextReport) {
+        limits.onProgress({store.size(), result.transitions, store.bytes(), result.depth, elapsed});
+        nextReport = elapsed + 1.0;
+      }
+    }
     bool more = i + 1 < store.size();  // a limit reached after the last state changes nothing
     if (!stopped && more && store.size() >= limits.maxStates) {
       result.limitReached = "--max-states " + std::to_string(limits.maxStates) + " reached";

@@ -1,4 +1,6 @@
 // `check` and `export`: build (or read) the IR, then search it or write it out.
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -76,7 +78,19 @@ int runCheck(const CheckOptions& options) {
   checker::SearchLimits limits;
   limits.maxStates = options.maxStates;
   limits.maxMemoryBytes = options.maxMemoryMiB << 20;
+  if (!options.json) {
+    // On a terminal the line is rewritten in place; in a log, one line every ten seconds.
+    bool terminal = isatty(STDERR_FILENO) != 0;
+    limits.onProgress = [terminal, last = -10.0](const checker::Progress& p) mutable {
+      if (!terminal && p.seconds - last < 10.0) return;
+      last = p.seconds;
+      std::cerr << (terminal ? "\r" : "") << "searching: " << p.states << " states, "
+                << static_cast<std::uint64_t>(p.states / p.seconds) << " states/s, depth " << p.depth << ", "
+                << (p.bytes >> 20) << " MiB, " << static_cast<int>(p.seconds) << " s" << (terminal ? "   " : "\n") << std::flush;
+    };
+  }
   checker::SearchResult r = checker::checkSafety(*model, limits);
+  if (r.seconds >= 1.0 && !options.json && isatty(STDERR_FILENO) != 0) std::cerr << "\n";
 
   bool violated = r.rangeError.has_value();
   for (const checker::PropertyResult& p : r.properties) violated = violated || p.verdict == checker::Verdict::Violated;

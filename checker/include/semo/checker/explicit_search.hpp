@@ -3,6 +3,7 @@
 // counterexample a shortest one. A property is "proven" only when the whole reachable state space
 // was explored; reaching a limit leaves the unviolated properties "unknown" with the coverage said.
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,9 +13,17 @@
 
 namespace semo::checker {
 
+struct Progress {
+  std::uint64_t states = 0, transitions = 0, bytes = 0;
+  std::uint32_t depth = 0;
+  double seconds = 0;
+};
+
 struct SearchLimits {
   std::uint64_t maxStates = 50'000'000;
   std::uint64_t maxMemoryBytes = 8ull << 30;
+  // Called about once a second during a long search (never for searches under a second).
+  std::function<void(const Progress&)> onProgress;
 };
 
 enum class Verdict { Proven, Violated, Unknown };
