@@ -175,25 +175,6 @@ class Writer {
     return d->op == Op::Const && d->value != 0;
   }
 
-  static const char* symbol(Op op) {
-    switch (op) {
-      case Op::Add: return "+";
-      case Op::Sub: return "-";
-      case Op::Mul: return "*";
-      case Op::Div: return "/";
-      case Op::Mod: return "%";
-      case Op::Eq: return "==";
-      case Op::Ne: return "!=";
-      case Op::Lt: return "<";
-      case Op::Le: return "<=";
-      case Op::Gt: return ">";
-      case Op::Ge: return ">=";
-      case Op::And: return "&&";
-      case Op::Or: return "||";
-      default: return "?";
-    }
-  }
-
   std::string expr(const Expr& e, int context = 0) const {
     std::string s = bare(e);
     return precedence(e) < context ? cat("(", s, ")") : s;
@@ -218,13 +199,13 @@ class Writer {
       case Op::Div:
       case Op::Mod:
         if (!divisorIsNonzeroConstant(e)) {  // x / 0 = x % 0 = 0 in the IR
-          return cat("(", expr(e.args[1], 6), " == 0 -> 0 : ", expr(e.args[0], 8), " ", symbol(e.op), " ",
+          return cat("(", expr(e.args[1], 6), " == 0 -> 0 : ", expr(e.args[0], 8), " ", ir::opSymbol(e.op), " ",
                      expr(e.args[1], 9), ")");
         }
         [[fallthrough]];
       default: {  // left-associative binary operators
         int p = precedence(e);
-        return cat(expr(e.args[0], p), " ", symbol(e.op), " ", expr(e.args[1], p + 1));
+        return cat(expr(e.args[0], p), " ", ir::opSymbol(e.op), " ", expr(e.args[1], p + 1));
       }
     }
   }

@@ -18,6 +18,26 @@ Expr fold(std::vector<Expr> parts, Op op, std::int32_t empty) {
 Expr conjunction(std::vector<Expr> parts) { return fold(std::move(parts), Op::And, 1); }
 Expr disjunction(std::vector<Expr> parts) { return fold(std::move(parts), Op::Or, 0); }
 
+const char* opSymbol(Op op) {
+  switch (op) {
+    case Op::Add: return "+";
+    case Op::Sub: return "-";
+    case Op::Mul: return "*";
+    case Op::Div: return "/";
+    case Op::Mod: return "%";
+    case Op::Eq: return "==";
+    case Op::Ne: return "!=";
+    case Op::Lt: return "<";
+    case Op::Le: return "<=";
+    case Op::Gt: return ">";
+    case Op::Ge: return ">=";
+    case Op::And: return "&&";
+    case Op::Or: return "||";
+    case Op::Implies: return "=>";
+    default: return "?";
+  }
+}
+
 const char* kindName(RuleKind kind) { return kKindNames[static_cast<std::size_t>(kind)]; }
 
 std::optional<RuleKind> kindFromName(const std::string& name) {

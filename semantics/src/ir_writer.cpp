@@ -24,25 +24,6 @@ int precedence(Op op) {
   }
 }
 
-const char* symbol(Op op) {
-  switch (op) {
-    case Op::Add: return "+";
-    case Op::Sub: return "-";
-    case Op::Mul: return "*";
-    case Op::Div: return "/";
-    case Op::Mod: return "%";
-    case Op::Eq: return "==";
-    case Op::Ne: return "!=";
-    case Op::Lt: return "<";
-    case Op::Le: return "<=";
-    case Op::Gt: return ">";
-    case Op::Ge: return ">=";
-    case Op::And: return "&&";
-    case Op::Or: return "||";
-    case Op::Implies: return "=>";
-    default: return "?";
-  }
-}
 
 std::string quoted(const std::string& s) {
   std::string out = "\"";
@@ -129,7 +110,7 @@ void write(std::ostream& out, const Model& m, const Expr& e, int context) {
       break;
     default:  // left-associative binary operators
       write(out, m, e.args[0], p);
-      out << ' ' << symbol(e.op) << ' ';
+      out << ' ' << opSymbol(e.op) << ' ';
       write(out, m, e.args[1], p + 1);
       break;
   }

@@ -48,6 +48,9 @@ struct Expr {
 Expr conjunction(std::vector<Expr> parts);
 Expr disjunction(std::vector<Expr> parts);
 
+// The infix spelling of a binary operator (C's, and `=>` for Implies); "?" for the others.
+const char* opSymbol(Op op);
+
 enum class RuleKind : std::uint8_t { Step, Delivery, Loss, Crash, Environment, Timer };
 const char* kindName(RuleKind kind);
 std::optional<RuleKind> kindFromName(const std::string& name);
