@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <optional>
 
 namespace semo::checker {
 
@@ -101,7 +102,39 @@ void StateLayout::unpack(const std::uint64_t* in, Value* values) const {
   }
 }
 
+namespace {
+
+// A conjunct `var == constant` (either way round) that the guard requires, if there is one.
+std::optional<std::pair<ir::VarId, Value>> requiredEquality(const ir::Expr& e) {
+  if (e.op == ir::Op::And) {
+    if (auto left = requiredEquality(e.args[0])) return left;
+    return requiredEquality(e.args[1]);
+  }
+  if (e.op != ir::Op::Eq) return std::nullopt;
+  const ir::Expr& a = e.args[0];
+  const ir::Expr& b = e.args[1];
+  if (a.op == ir::Op::Var && b.op == ir::Op::Const) return std::pair{static_cast<ir::VarId>(a.value), b.value};
+  if (b.op == ir::Op::Var && a.op == ir::Op::Const) return std::pair{static_cast<ir::VarId>(b.value), a.value};
+  return std::nullopt;
+}
+
+}  // namespace
+
 CompiledModel::CompiledModel(const ir::Model& model) : model_(&model), layout_(model) {
+  std::vector<std::int32_t> triggerOf(model.variables.size(), -1);
+  for (std::uint32_t r = 0; r < model.rules.size(); ++r) {
+    auto eq = requiredEquality(model.rules[r].guard);
+    const ir::Variable* v = eq ? &model.variables[eq->first] : nullptr;
+    if (v == nullptr || eq->second < v->min || eq->second > v->max) {
+      untriggered_.push_back(r);  // (an equality outside the range: the rule can never fire, but keep it simple)
+      continue;
+    }
+    if (triggerOf[eq->first] < 0) {
+      triggerOf[eq->first] = static_cast<std::int32_t>(triggers_.size());
+      triggers_.push_back({eq->first, std::vector<std::vector<std::uint32_t>>(static_cast<std::size_t>(v->max - v->min) + 1)});
+    }
+    triggers_[static_cast<std::size_t>(triggerOf[eq->first])].rulesByValue[static_cast<std::size_t>(eq->second - v->min)].push_back(r);
+  }
   for (const ir::Rule& r : model.rules) {
     CompiledRule c{Program(r.guard), {}};
     for (const ir::Branch& b : r.branches) {
@@ -116,6 +149,17 @@ CompiledModel::CompiledModel(const ir::Model& model) : model_(&model), layout_(m
     validEnd_ = Program(*model.validEnd);
     hasValidEnd_ = true;
   }
+}
+
+void CompiledModel::candidateRules(const Value* values, std::vector<std::uint32_t>& out) const {
+  out.assign(untriggered_.begin(), untriggered_.end());
+  for (const Trigger& t : triggers_) {
+    const std::vector<std::uint32_t>& bucket =
+        t.rulesByValue[static_cast<std::size_t>(values[t.var] - model_->variables[t.var].min)];
+    out.insert(out.end(), bucket.begin(), bucket.end());
+  }
+  // Rule order decides which of several shortest counterexamples is reported: keep it stable.
+  std::sort(out.begin(), out.end());
 }
 
 std::vector<Value> CompiledModel::initialValues() const {

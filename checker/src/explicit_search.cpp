@@ -122,6 +122,7 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
   result.bytesPerState = store.bytesPerState();
   std::vector<Value> values = cm.initialValues(), next(values.size()), scratch;
   std::vector<std::uint64_t> packed(layout.words());
+  std::vector<std::uint32_t> candidates;
 
   auto checkInvariants = [&](const Value* v, std::size_t index) {
     for (std::size_t p = 0; p < cm.invariants().size(); ++p) {
@@ -161,7 +162,9 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
     }
     layout.unpack(store.state(i), values.data());
     bool enabled = false;
-    for (std::size_t r = 0; r < cm.rules().size() && !stopped; ++r) {
+    cm.candidateRules(values.data(), candidates);
+    for (std::size_t k = 0; k < candidates.size() && !stopped; ++k) {
+      std::size_t r = candidates[k];
       const CompiledRule& rule = cm.rules()[r];
       if (rule.guard.eval(values.data()) == 0) continue;
       enabled = true;

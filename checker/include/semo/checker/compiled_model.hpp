@@ -70,6 +70,9 @@ class CompiledModel {
   [[nodiscard]] const std::vector<Program>& invariants() const { return invariants_; }
   [[nodiscard]] const Program* validEnd() const { return hasValidEnd_ ? &validEnd_ : nullptr; }
   [[nodiscard]] std::vector<Value> initialValues() const;
+  // The rules whose guard may hold in a state, in rule order: rules whose guard requires
+  // `var == constant` (a robot's program counter, mostly) are only offered when it holds.
+  void candidateRules(const Value* values, std::vector<std::uint32_t>& out) const;
   // Whether `value` fits the declared range of `var` (an update out of range is a model error).
   [[nodiscard]] bool inRange(ir::VarId var, Value value) const;
 
@@ -80,6 +83,12 @@ class CompiledModel {
   std::vector<Program> invariants_;
   Program validEnd_;
   bool hasValidEnd_ = false;
+  struct Trigger {
+    ir::VarId var;
+    std::vector<std::vector<std::uint32_t>> rulesByValue;  // indexed by value - min
+  };
+  std::vector<Trigger> triggers_;
+  std::vector<std::uint32_t> untriggered_;
 };
 
 }  // namespace semo::checker
