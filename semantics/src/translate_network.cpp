@@ -84,42 +84,38 @@ void Translator::eventRules() {
       deliver.branches.push_back(std::move(branch));
       deliver.weaklyFair = true;
       addRule(std::move(deliver));
-      if (loseEvents_ && event.delivery.reliable == false) {
-        ir::Rule lose;
-        lose.name = m_.robots[q].name + ".lose." + event.name;
-        lose.robot = static_cast<std::int32_t>(q);
-        lose.kind = ir::RuleKind::Loss;
-        lose.label = "loses event " + event.name;
-        lose.guard = ir::conjunction({alive(q), Expr::var(var)});
-        lose.branches.push_back({1.0, {{var, Expr::constant(0)}}});
-        addRule(std::move(lose));
+      if (loseEvents_ && !event.delivery.reliable) {
+        addRule(robotRule("lose." + event.name, q, ir::RuleKind::Loss, "loses event " + event.name,
+                          ir::conjunction({alive(q), Expr::var(var)}), {{var, Expr::constant(0)}}));
       }
     }
   }
+}
+
+ir::Rule Translator::robotRule(const std::string& what, Index robot, ir::RuleKind kind, std::string label, Expr guard,
+                               std::vector<ir::Assignment> updates) const {
+  ir::Rule rule;
+  rule.name = m_.robots[robot].name + "." + what;
+  rule.robot = static_cast<std::int32_t>(robot);
+  rule.kind = kind;
+  rule.label = std::move(label);
+  rule.guard = std::move(guard);
+  rule.branches.push_back({1.0, std::move(updates)});
+  return rule;
 }
 
 void Translator::messageRules() {
   for (Index q = 0; q < m_.robots.size(); ++q) {
     for (const auto& [tp, msg] : vars_[q].msg) {
       std::string topic = m_.teams[m_.topics[tp].owner].name + "." + m_.topics[tp].var;
-      ir::Rule deliver;
-      deliver.name = m_.robots[q].name + ".deliver." + topic;
-      deliver.robot = static_cast<std::int32_t>(q);
-      deliver.kind = ir::RuleKind::Delivery;
-      deliver.label = "receives " + topic;
-      deliver.guard = ir::conjunction({alive(q), Expr::binary(Op::Ne, Expr::var(msg), Expr::constant(0))});
-      deliver.branches.push_back({1.0, {{vars_[q].view.at(tp), Expr::var(msg)}, {msg, Expr::constant(0)}}});
+      Expr pending = ir::conjunction({alive(q), Expr::binary(Op::Ne, Expr::var(msg), Expr::constant(0))});
+      ir::Rule deliver = robotRule("deliver." + topic, q, ir::RuleKind::Delivery, "receives " + topic, pending,
+                                   {{vars_[q].view.at(tp), Expr::var(msg)}, {msg, Expr::constant(0)}});
       deliver.weaklyFair = true;
       addRule(std::move(deliver));
-      if (!losePublish_) continue;
-      ir::Rule lose;
-      lose.name = m_.robots[q].name + ".lose." + topic;
-      lose.robot = static_cast<std::int32_t>(q);
-      lose.kind = ir::RuleKind::Loss;
-      lose.label = "loses " + topic;
-      lose.guard = ir::conjunction({alive(q), Expr::binary(Op::Ne, Expr::var(msg), Expr::constant(0))});
-      lose.branches.push_back({1.0, {{msg, Expr::constant(0)}}});
-      addRule(std::move(lose));
+      if (losePublish_) {
+        addRule(robotRule("lose." + topic, q, ir::RuleKind::Loss, "loses " + topic, std::move(pending), {{msg, Expr::constant(0)}}));
+      }
     }
   }
 }

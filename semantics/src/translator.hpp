@@ -86,6 +86,9 @@ class Translator {
   [[nodiscard]] std::int32_t timeoutPeriods(Index block) const;
   void roundRules(Index block);
   void addRule(ir::Rule rule) { out_.rules.push_back(std::move(rule)); }
+  // A one-outcome rule of `robot`, named "<robot>.<what>".
+  [[nodiscard]] ir::Rule robotRule(const std::string& what, Index robot, ir::RuleKind kind, std::string label, Expr guard,
+                                   std::vector<ir::Assignment> updates) const;
   [[nodiscard]] bool wants(const std::string& check) const {
     return std::find(m_.assumptions.checks.begin(), m_.assumptions.checks.end(), check) != m_.assumptions.checks.end();
   }
