@@ -25,6 +25,15 @@ class StateStore {
   }
   [[nodiscard]] std::uint64_t bytesPerState() const { return words_ * 8 + 4 + 4 + 8; }  // data, parent, via, table
 
+  [[nodiscard]] bool contains(const std::uint64_t* s) const {
+    std::size_t mask = table_.size() - 1;
+    for (std::size_t slot = hash(s) & mask;; slot = (slot + 1) & mask) {
+      std::uint32_t entry = table_[slot];
+      if (entry == 0) return false;
+      if (std::equal(s, s + words_, state(entry - 1))) return true;
+    }
+  }
+
   // Returns the state's index and whether it is new.
   std::pair<std::uint32_t, bool> insert(const std::uint64_t* s, std::uint32_t parent, std::uint32_t via) {
     if ((parent_.size() + 1) * 2 > table_.size()) grow();
@@ -140,9 +149,49 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
   store.insert(packed.data(), kNoParent, 0);
   checkInvariants(values.data(), 0);
 
+  auto judgeDeadlock = [&](const Value* v, std::size_t index) {
+    if (deadlockIndex == SIZE_MAX || result.properties[deadlockIndex].verdict == Verdict::Violated) return;
+    if (validEnd->eval(v) != 0) return;
+    result.properties[deadlockIndex].verdict = Verdict::Violated;
+    Trace t = traceTo(cm, store, index);
+    t.property = "deadlock_freedom";
+    t.kind = "deadlock";
+    result.properties[deadlockIndex].counterexample = std::move(t);
+    --open;
+  };
+
+  // For a state at a --max-depth bound, which is not expanded: whether a rule is enabled, and
+  // whether a successor is not yet stored (or out of range), i.e. the bound cut something off.
+  struct Frontier {
+    bool enabled = false, cutOff = false;
+  };
+  auto probe = [&](const Value* v) {
+    Frontier f;
+    cm.candidateRules(v, candidates);
+    for (std::uint32_t r : candidates) {
+      const CompiledRule& rule = cm.rules()[r];
+      if (rule.guard.eval(v) == 0) continue;
+      f.enabled = true;
+      for (const CompiledBranch& branch : rule.branches) {
+        std::copy_n(v, next.size(), next.begin());
+        scratch.resize(branch.assignments.size());
+        bool inRange = true;
+        for (std::size_t a = 0; a < branch.assignments.size(); ++a) {
+          scratch[a] = branch.assignments[a].value.eval(v);
+          inRange = inRange && cm.inRange(branch.assignments[a].var, scratch[a]);
+        }
+        if (!inRange) return Frontier{true, true};
+        for (std::size_t a = 0; a < branch.assignments.size(); ++a) next[branch.assignments[a].var] = scratch[a];
+        layout.pack(next.data(), packed.data());
+        if (!store.contains(packed.data())) return Frontier{true, true};
+      }
+    }
+    return f;
+  };
+
   std::size_t levelEnd = 1;
   double nextReport = 1.0;
-  bool stopped = false, exhausted = false;
+  bool stopped = false, exhausted = false, cutOff = false;
   for (std::size_t i = 0;; ++i) {
     // Before the exhaustion test: a range error in the last queued state leaves its successor
     // unexplored, so the search is not complete.
@@ -157,8 +206,23 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
       break;
     }
     if (i == levelEnd) {
-      ++result.depth;
+      ++result.depth;  // the depth of state i
       levelEnd = store.size();
+    }
+    if (result.depth >= limits.maxDepth) {
+      // States i.. lie at the bound: judged (invariants when stored, deadlock here) but not expanded.
+      for (std::size_t j = i; j < store.size(); ++j) {
+        layout.unpack(store.state(j), values.data());
+        Frontier f = probe(values.data());
+        cutOff = cutOff || f.cutOff;
+        if (!f.enabled) judgeDeadlock(values.data(), j);
+      }
+      if (cutOff) {
+        result.limitReached = "--max-depth " + std::to_string(limits.maxDepth) + " reached";
+        result.depthBounded = true;
+      }
+      exhausted = !cutOff;
+      break;
     }
     layout.unpack(store.state(i), values.data());
     bool enabled = false;
@@ -200,15 +264,7 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
         if (added) checkInvariants(next.data(), index);
       }
     }
-    if (!enabled && deadlockIndex != SIZE_MAX && result.properties[deadlockIndex].verdict != Verdict::Violated &&
-        validEnd->eval(values.data()) == 0) {
-      result.properties[deadlockIndex].verdict = Verdict::Violated;
-      Trace t = traceTo(cm, store, i);
-      t.property = "deadlock_freedom";
-      t.kind = "deadlock";
-      result.properties[deadlockIndex].counterexample = std::move(t);
-      --open;
-    }
+    if (!enabled) judgeDeadlock(values.data(), i);
     result.peakBytes = std::max(result.peakBytes, store.bytes());
     if (limits.onProgress && (i & 0x3fffu) == 0) {
       double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

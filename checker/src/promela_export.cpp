@@ -141,7 +141,7 @@ bool reads(const Expr& e, ir::VarId var) {
 
 class Writer {
  public:
-  explicit Writer(const ir::Model& m) : m_(m) {
+  Writer(const ir::Model& m, const PromelaOptions& options) : m_(m), options_(options) {
     for (const ir::Variable& v : m.variables) varNames_.push_back(names_.fresh(v.name));
   }
 
@@ -224,11 +224,17 @@ class Writer {
          << " * " << m_.variables.size() << " variables, " << m_.rules.size() << " rules, " << m_.invariants.size()
          << " invariants, deadlock " << (m_.validEnd ? "checked against valid_end" : "not checked (no valid_end)")
          << ".\n *\n"
-         << " * Cross-check with SPIN (partial-order reduction off, safety only):\n"
-         << " *   spin -a model.pml && gcc -O2 -DNOREDUCE -DSAFETY -o pan pan.c && ./pan -m1000000\n"
-         << " * pan's \"states, stored\" is then exactly the number of states `semo-verify check` explores\n"
-         << " * (-m must exceed the depth of pan's depth-first search, at most that number of states).\n"
-         << " * Each rule, and each outcome of a probabilistic rule, is one d_step option of the loop below;\n"
+         << " * Cross-check with SPIN (partial-order reduction off, safety only):\n";
+    if (options_.breadthFirst) {
+      out_ << " *   spin -a model.pml && gcc -O2 -DNOREDUCE -DSAFETY -DBFS -o pan pan.c && ./pan -mK\n"
+           << " * pan's \"states, stored\" is then exactly the number of states `semo-verify check --max-depth K`\n"
+           << " * explores (pan judges the states at depth K only with -m(K+1)).\n";
+    } else {
+      out_ << " *   spin -a model.pml && gcc -O2 -DNOREDUCE -DSAFETY -o pan pan.c && ./pan -m1000000\n"
+           << " * pan's \"states, stored\" is then exactly the number of states `semo-verify check` explores\n"
+           << " * (-m must exceed the depth of pan's depth-first search, at most that number of states).\n";
+    }
+    out_ << " * Each rule, and each outcome of a probabilistic rule, is one d_step option of the loop below;\n"
          << " * probabilities are ignored (an outcome is a nondeterministic choice). An update out of a\n"
          << " * variable's declared range is a modelling error for semo; here it would wrap or truncate.\n";
     if (!m_.robots.empty()) {
@@ -297,17 +303,20 @@ class Writer {
     if (!unread_.empty()) readSink_ = names_.fresh("semo_read");
     processName_ = names_.fresh("semo_model");
     if (temporaries == 0 && invariantFlags_.empty() && validEndFlag_.empty() && unread_.empty()) return;
-    out_ << "/* ---- hidden: not part of the state vector */\n";
+    // Breadth-first pan rejects `hidden`; there these are globals every step leaves 0.
+    const char* hidden = options_.breadthFirst ? "" : "hidden ";
+    out_ << (options_.breadthFirst ? "/* ---- scratch: 0 between steps (pan -DBFS allows no hidden variables) */\n"
+                                   : "/* ---- hidden: not part of the state vector */\n");
     for (std::size_t i = 0; i < invariantFlags_.size(); ++i) {
-      out_ << "hidden byte " << invariantFlags_[i] << ";\t/* property '" << commentText(m_.invariants[i].name) << "'";
+      out_ << hidden << "byte " << invariantFlags_[i] << ";\t/* property '" << commentText(m_.invariants[i].name) << "'";
       if (!m_.invariants[i].origin.empty()) out_ << " at " << commentText(m_.invariants[i].origin);
       out_ << " */\n";
     }
     if (!validEndFlag_.empty()) {
-      out_ << "hidden byte " << validEndFlag_ << ";\t/* property 'deadlock_freedom': valid_end where no rule is enabled */\n";
+      out_ << hidden << "byte " << validEndFlag_ << ";\t/* property 'deadlock_freedom': valid_end where no rule is enabled */\n";
     }
-    for (const std::string& t : temporaries_) out_ << "hidden int " << t << ";\t/* an old value, for a simultaneous assignment */\n";
-    if (!readSink_.empty()) out_ << "hidden int " << readSink_ << ";\t/* see the last option of the loop */\n";
+    for (const std::string& t : temporaries_) out_ << hidden << "int " << t << ";\t/* an old value, for a simultaneous assignment */\n";
+    if (!readSink_.empty()) out_ << hidden << "int " << readSink_ << ";\t/* see the last option of the loop */\n";
     out_ << "\n";
   }
 
@@ -337,6 +346,9 @@ class Writer {
       out.push_back(cat(varNames_[a.var], " = ", boolConstant ? (a.value.value != 0 ? "true" : "false") : expr(a.value)));
     }
     for (std::size_t k = 0; k < late.size(); ++k) out.push_back(varNames_[b.assignments[late[k]].var] + " = " + temporaries_[k]);
+    if (options_.breadthFirst) {
+      for (std::size_t k = 0; k < late.size(); ++k) out.push_back(temporaries_[k] + " = 0");
+    }
     if (out.empty()) out.emplace_back("skip");
     return out;
   }
@@ -361,7 +373,7 @@ class Writer {
   // value (256 would be stored as 0) is written `e != 0`.
   std::string assertion(const std::string& flag, const Expr& e) const {
     std::string value = isBoolean(e) ? expr(e, 3) : expr(Expr::binary(Op::Ne, e, Expr::constant(0)));
-    return cat(flag, " = ", value, "; assert(", flag, ")");
+    return cat(flag, " = ", value, "; assert(", flag, ")", options_.breadthFirst ? cat("; ", flag, " = 0") : "");
   }
 
   std::string assertValidEnd() const { return assertion(validEndFlag_, *m_.validEnd); }
@@ -450,6 +462,7 @@ class Writer {
   }
 
   const ir::Model& m_;
+  PromelaOptions options_;
   std::ostringstream out_;
   Names names_;
   std::vector<std::string> varNames_;
@@ -463,8 +476,8 @@ class Writer {
 
 }  // namespace
 
-std::string toPromela(const ir::Model& model) {
-  return Writer(model).run();
+std::string toPromela(const ir::Model& model, const PromelaOptions& options) {
+  return Writer(model, options).run();
 }
 
 }  // namespace semo::checker

@@ -102,7 +102,8 @@ TEST_F(Scouting, StatementsAreResolved) {
   EXPECT_EQ(m().topics[message].buffer, 2);
   model::Index report = m().findTopic(m().findTeam("SlaveTeam"), "paperReport");
   ASSERT_NE(report, model::kNone);
-  EXPECT_TRUE(m().topics[report].reliable);
+  EXPECT_FALSE(m().topics[report].reliable) << "published to the master, not sent";
+  EXPECT_TRUE(m().topics[report].written && m().topics[report].read);
 }
 
 TEST_F(Scouting, AssumptionsAndProperties) {

@@ -352,5 +352,75 @@ TEST(PromelaExport, DeadlockOptionOnlyWithValidEnd) {
             std::string::npos) << b;
 }
 
+// A counter 0..3 with a reset: depth d reaches the states 0..d.
+constexpr const char* kCounter = R"(semo-ir 1;
+var c : 0..3 = 0;
+rule inc : c < 3 -> c' = c + 1;
+rule reset : c == 3 -> c' = 0;
+)";
+
+SearchResult checkToDepth(const ir::Model& m, std::uint32_t depth) {
+  SearchLimits limits;
+  limits.maxDepth = depth;
+  return checkSafety(m, limits);
+}
+
+TEST(ExplicitSearch, MaxDepthStoresExactlyTheStatesWithinTheBound) {
+  ir::Model m = parse(std::string(kCounter) + "invariant small : c <= 3;\n");
+  for (std::uint32_t d = 0; d < 3; ++d) {
+    SearchResult r = checkToDepth(m, d);
+    EXPECT_EQ(r.states, d + 1) << "depth " << d;
+    EXPECT_EQ(r.depth, d);
+    EXPECT_FALSE(r.complete);
+    EXPECT_TRUE(r.depthBounded);
+    EXPECT_EQ(r.properties[0].verdict, Verdict::Unknown) << "a bounded search proves nothing";
+  }
+  // At depth 3 the only successor of the state at the bound (c = 0) is already stored: complete.
+  SearchResult r = checkToDepth(m, 3);
+  EXPECT_EQ(r.states, 4u);
+  EXPECT_TRUE(r.complete);
+  EXPECT_FALSE(r.depthBounded);
+  EXPECT_EQ(r.properties[0].verdict, Verdict::Proven);
+}
+
+TEST(ExplicitSearch, MaxDepthChecksTheStatesAtTheBound) {
+  // The invariant fails at depth 2 and a deadlock waits at depth 3: both count at the bound.
+  ir::Model m = parse(R"(semo-ir 1;
+var c : 0..3 = 0;
+rule inc : c < 3 -> c' = c + 1;
+invariant below_two : c < 2;
+valid_end : c == 0;
+)");
+  SearchResult one = checkToDepth(m, 1);
+  EXPECT_EQ(property(one, "below_two").verdict, Verdict::Unknown);
+  SearchResult two = checkToDepth(m, 2);
+  EXPECT_EQ(property(two, "below_two").verdict, Verdict::Violated);
+  EXPECT_EQ(property(two, "deadlock_freedom").verdict, Verdict::Unknown);
+  SearchResult three = checkToDepth(m, 3);
+  const PropertyResult& deadlock = property(three, "deadlock_freedom");
+  EXPECT_EQ(deadlock.verdict, Verdict::Violated);
+  ASSERT_TRUE(deadlock.counterexample.has_value());
+  EXPECT_EQ(deadlock.counterexample->steps.size(), 3u);
+}
+
+TEST(PromelaExport, BreadthFirstHasNoHiddenVariablesAndResetsTheScratch) {
+  ir::Model m = parse(R"(semo-ir 1;
+var a : 0..3 = 0;
+var b : 0..3 = 1;
+rule swap : true -> a' = b, b' = a;
+invariant small : a < 3;
+valid_end : a == b;
+)");
+  std::string dfs = toPromela(m);
+  EXPECT_NE(dfs.find("hidden int semo_old0;"), std::string::npos) << dfs;
+  std::string bfs = toPromela(m, {.breadthFirst = true});
+  EXPECT_EQ(bfs.find("hidden byte"), std::string::npos) << bfs;
+  EXPECT_EQ(bfs.find("hidden int"), std::string::npos) << bfs;
+  EXPECT_NE(bfs.find("\nbyte prop_small;"), std::string::npos) << bfs;
+  EXPECT_NE(bfs.find("assert(prop_small); prop_small = 0"), std::string::npos) << bfs;
+  EXPECT_NE(bfs.find("assert(prop_deadlock_freedom); prop_deadlock_freedom = 0"), std::string::npos) << bfs;
+  EXPECT_NE(bfs.find("semo_old0 = 0"), std::string::npos) << bfs;
+}
+
 }  // namespace
 }  // namespace semo::checker

@@ -78,6 +78,7 @@ int runCheck(const CheckOptions& options) {
   checker::SearchLimits limits;
   limits.maxStates = options.maxStates;
   limits.maxMemoryBytes = options.maxMemoryMiB << 20;
+  limits.maxDepth = options.maxDepth;
   if (!options.json) {
     // On a terminal the line is rewritten in place; in a log, one line every ten seconds.
     bool terminal = isatty(STDERR_FILENO) != 0;
@@ -109,6 +110,7 @@ int runCheck(const CheckOptions& options) {
                            {"seconds", r.seconds},           {"bytesPerState", r.bytesPerState},
                            {"properties", props},            {"exitCode", code}};
     if (!r.limitReached.empty()) root["limit"] = r.limitReached;
+    if (r.depthBounded) root["boundedDepth"] = r.depth;
     if (r.rangeError) root["modelError"] = nlohmann::json::parse(checker::traceToJson(*model, *r.rangeError));
     std::cout << root.dump(2) << "\n";
     return code;
@@ -123,6 +125,9 @@ int runCheck(const CheckOptions& options) {
     std::cout << "  " << checker::verdictName(p.verdict) << "  " << p.name;
     if (p.verdict == checker::Verdict::Proven) {
       std::cout << "  (all " << r.states << " reachable states, under the assumptions above)";
+    } else if (p.verdict == checker::Verdict::Unknown && r.depthBounded) {
+      std::cout << "  (holds on every path of up to " << r.depth << " steps, " << r.states
+                << " states; longer paths not explored)";
     } else if (p.verdict == checker::Verdict::Unknown) {
       std::cout << "  (not violated in the " << r.states << " states explored; the search was not complete)";
     } else if (p.counterexample) {
@@ -143,7 +148,12 @@ int runCheck(const CheckOptions& options) {
 int runExport(const ExportOptions& options) {
   std::optional<ir::Model> model = buildModel(options.model);
   if (!model) return kBadInput;
-  std::string text = options.format == "promela" ? checker::toPromela(*model) : ir::toText(*model);
+  if (options.spinBreadthFirst && options.format != "promela") {
+    std::cerr << "semo-verify: error: --spin-bfs applies to --promela only\n";
+    return kBadInput;
+  }
+  std::string text = options.format == "promela" ? checker::toPromela(*model, {.breadthFirst = options.spinBreadthFirst})
+                                                 : ir::toText(*model);
   if (!options.output) {
     std::cout << text;
     return kOk;

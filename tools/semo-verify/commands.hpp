@@ -32,6 +32,7 @@ struct ModelInput {
 struct CheckOptions {
   ModelInput model;
   std::uint64_t maxStates = 50'000'000;
+  std::uint32_t maxDepth = UINT32_MAX;
   std::uint64_t maxMemoryMiB = 8192;
   bool json = false;
 };
@@ -39,6 +40,7 @@ struct CheckOptions {
 struct ExportOptions {
   ModelInput model;
   std::string format;  // "ir" or "promela"
+  bool spinBreadthFirst = false;
   std::optional<std::string> output;
 };
 

@@ -40,6 +40,8 @@ int main(int argc, char** argv) {
   addModelOptions(checkCmd, check.model);
   checkCmd->add_option("--max-states", check.maxStates, "Stop after this many states (exit 3, partial result)");
   checkCmd->add_option("--max-memory", check.maxMemoryMiB, "Stop when the state store reaches this many MiB (exit 3)");
+  checkCmd->add_option("--max-depth", check.maxDepth,
+                       "Explore only paths of at most this many steps (bounded search: exit 3 unless nothing lies beyond)");
   checkCmd->add_flag("--json", check.json, "Print the verdicts and counterexamples as JSON (specs/trace.md)");
 
   semo::cli::ExportOptions exportOptions;
@@ -49,6 +51,8 @@ int main(int argc, char** argv) {
   formats->add_flag_callback("--ir", [&] { exportOptions.format = "ir"; }, "The IR in its text form (specs/ir.md)");
   formats->add_flag_callback("--promela", [&] { exportOptions.format = "promela"; }, "Promela for SPIN, one atomic step per rule");
   formats->require_option(1);
+  exportCmd->add_flag("--spin-bfs", exportOptions.spinBreadthFirst,
+                                  "With --promela: no hidden variables, for pan -DBFS (then -m bounds the depth as --max-depth does)");
   exportCmd->add_option("--output,-o", exportOptions.output, "Write to this file (default: standard output)");
 
   try {

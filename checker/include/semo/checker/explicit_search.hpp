@@ -22,6 +22,10 @@ struct Progress {
 struct SearchLimits {
   std::uint64_t maxStates = 50'000'000;
   std::uint64_t maxMemoryBytes = 8ull << 30;
+  // Explore only the states within this many steps of the initial state (bounded search: never
+  // "proven" unless no path is longer). States at the bound are checked against the invariants but
+  // not expanded, as in SPIN's breadth-first search with -m.
+  std::uint32_t maxDepth = UINT32_MAX;
   // Called about once a second during a long search (never for searches under a second).
   std::function<void(const Progress&)> onProgress;
 };
@@ -43,6 +47,7 @@ struct SearchResult {
   std::uint32_t depth = 0;       // BFS levels explored
   bool complete = false;         // the whole reachable state space was explored
   std::string limitReached;      // why the search stopped early, if it did
+  bool depthBounded = false;     // stopped by maxDepth: every state within that many steps was explored
   std::uint64_t bytesPerState = 0;
   std::uint64_t peakBytes = 0;
   double seconds = 0;

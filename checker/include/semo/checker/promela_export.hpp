@@ -8,6 +8,13 @@
 
 namespace semo::checker {
 
-std::string toPromela(const ir::Model& model);
+struct PromelaOptions {
+  // For pan's breadth-first search (-DBFS), which rejects `hidden` variables: the property flags
+  // and temporaries become ordinary globals that every step leaves 0, so the state count is the
+  // same. Breadth-first order makes a depth bound (-m) mean what `check --max-depth` means.
+  bool breadthFirst = false;
+};
+
+std::string toPromela(const ir::Model& model, const PromelaOptions& options = {});
 
 }  // namespace semo::checker
