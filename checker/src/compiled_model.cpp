@@ -168,6 +168,17 @@ std::vector<Value> CompiledModel::initialValues() const {
   return values;
 }
 
+bool CompiledModel::step(const CompiledBranch& branch, const Value* in, Value* out) const {
+  std::copy_n(in, layout_.variables(), out);
+  bool ok = true;
+  for (const CompiledAssignment& a : branch.assignments) {
+    Value v = a.value.eval(in);  // every right-hand side reads the old state
+    ok = ok && inRange(a.var, v);
+    out[a.var] = v;
+  }
+  return ok;
+}
+
 bool CompiledModel::inRange(ir::VarId var, Value value) const {
   const ir::Variable& v = model_->variables[var];
   return value >= v.min && value <= v.max;

@@ -55,6 +55,14 @@ std::string traceToText(const ir::Model& m, const Trace& t) {
       out << "       " << var.name << " = " << valueText(var, final[v]) << "\n";
     }
   }
+  if (t.kind == "lasso") {
+    if (t.loopStart >= t.steps.size()) {
+      out << "  then no rule is enabled: the run stays in this state for ever, and " << t.property << " does not hold\n";
+    } else {
+      out << "  then back to the state before step " << (t.loopStart + 1) << ": the loop repeats for ever, and "
+          << t.property << " does not hold\n";
+    }
+  }
   if (t.kind == "invariant") out << "  then " << t.property << " does not hold\n";
   if (t.kind == "range") out << "  the last step assigns a value outside a variable's declared range (a modelling error)\n";
   return out.str();

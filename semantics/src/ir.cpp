@@ -38,6 +38,22 @@ const char* opSymbol(Op op) {
   }
 }
 
+const char* ltlKeyword(Ltl::Kind kind) {
+  switch (kind) {
+    case Ltl::Kind::Atom: return "";
+    case Ltl::Kind::Not: return "!";
+    case Ltl::Kind::And: return "&&";
+    case Ltl::Kind::Or: return "||";
+    case Ltl::Kind::Implies: return "=>";
+    case Ltl::Kind::Next: return "next";
+    case Ltl::Kind::Always: return "always";
+    case Ltl::Kind::Eventually: return "eventually";
+    case Ltl::Kind::Until: return "until";
+    case Ltl::Kind::Release: return "release";
+  }
+  return "";
+}
+
 const char* kindName(RuleKind kind) { return kKindNames[static_cast<std::size_t>(kind)]; }
 
 std::optional<RuleKind> kindFromName(const std::string& name) {

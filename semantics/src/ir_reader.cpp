@@ -110,7 +110,7 @@ class Reader {
         for (const char* t : twoChar) {
           if (text_.compare(pos, 2, t) == 0) length = 2;
         }
-        if (length == 1 && std::string_view(":;,()'=<>+-*/%!?@[]").find(c) == std::string_view::npos) {
+        if (length == 1 && std::string_view(":;,()'=<>+-*/%!?@[]{}").find(c) == std::string_view::npos) {
           diags_.error(range(b, b + 1), std::string("unexpected character '") + c + "'");
           ++pos;
           continue;
@@ -201,6 +201,20 @@ class Reader {
       inv.holds = expr();
       expect(";", "after the invariant");
       model_.invariants.push_back(std::move(inv));
+    } else if (isWord("property")) {
+      advance();
+      Property prop;
+      const Token& nameToken = peek();
+      prop.name = declaredName("a property name").first;
+      if (!invariantNames_.insert(prop.name).second) fail(nameToken, "property '" + prop.name + "' is declared twice");
+      attributes([&](const Token& key, const std::string& value) {
+        if (key.text == "origin") return prop.origin = value, true;
+        return false;
+      });
+      expect(":", "after the property name");
+      prop.formula = ltl();
+      expect(";", "after the property");
+      model_.properties.push_back(std::move(prop));
     } else if (isWord("valid_end")) {
       const Token& at = advance();
       if (model_.validEnd) fail(at, "valid_end is given twice");
@@ -208,7 +222,7 @@ class Reader {
       model_.validEnd = expr();
       expect(";", "after valid_end");
     } else {
-      fail(peek(), "expected 'var', 'rule', 'invariant', 'valid_end', 'robots' or 'assume', found " + found());
+      fail(peek(), "expected 'var', 'rule', 'invariant', 'property', 'valid_end', 'robots' or 'assume', found " + found());
     }
   }
 
@@ -329,6 +343,7 @@ class Reader {
       if (key.text == "origin") return r.origin = value, true;
       if (key.text == "label") return r.label = value, true;
       if (key.text == "fair") return r.weaklyFair = true, true;
+      if (key.text == "strongly_fair") return r.weaklyFair = r.stronglyFair = true, true;
       if (key.text == "kind") {
         auto kind = kindFromName(value);
         if (!kind) fail(key, "unknown rule kind '" + value + "' (step, delivery, loss, crash, environment, timer)");
@@ -373,6 +388,50 @@ class Reader {
     }
     expect(";", "after the rule");
     model_.rules.push_back(std::move(r));
+  }
+
+  // ---- temporal formulas: atoms in braces; loosest first: until/release (right), =>, ||, &&, prefix
+  Ltl ltl(int depth = 0) {
+    if (depth > 200) fail(peek(), "formula nested too deeply");
+    Ltl left = ltlImplies(depth);
+    for (auto kind : {Ltl::Kind::Until, Ltl::Kind::Release}) {
+      if (isWord(ltlKeyword(kind))) {
+        advance();
+        return Ltl::binary(kind, std::move(left), ltl(depth + 1));
+      }
+    }
+    return left;
+  }
+  Ltl ltlImplies(int depth) {
+    Ltl left = ltlChain(depth, 0);
+    if (!accept("=>")) return left;
+    return Ltl::binary(Ltl::Kind::Implies, std::move(left), ltlImplies(depth + 1));
+  }
+  Ltl ltlChain(int depth, int level) {  // level 0: ||, level 1: &&
+    if (level == 2) return ltlPrefix(depth);
+    Ltl left = ltlChain(depth, level + 1);
+    const char* op = level == 0 ? "||" : "&&";
+    while (accept(op)) left = Ltl::binary(level == 0 ? Ltl::Kind::Or : Ltl::Kind::And, std::move(left), ltlChain(depth, level + 1));
+    return left;
+  }
+  Ltl ltlPrefix(int depth) {
+    if (depth > 200) fail(peek(), "formula nested too deeply");
+    if (accept("!")) return Ltl::unary(Ltl::Kind::Not, ltlPrefix(depth + 1));
+    for (auto kind : {Ltl::Kind::Next, Ltl::Kind::Always, Ltl::Kind::Eventually}) {
+      if (isWord(ltlKeyword(kind))) {
+        advance();
+        return Ltl::unary(kind, ltlPrefix(depth + 1));
+      }
+    }
+    if (accept("(")) {
+      Ltl f = ltl(depth + 1);
+      expect(")", "to close the parenthesis");
+      return f;
+    }
+    if (!accept("{")) fail(peek(), "expected a state formula in braces '{...}', a temporal operator or '(', found " + found());
+    Expr e = expr();
+    expect("}", "to close the state formula");
+    return Ltl::of(std::move(e));
   }
 
   // ---- expressions, loosest first: ?:  =>  ||  &&  == !=  < <= > >=  + -  * / %  unary

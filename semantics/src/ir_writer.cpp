@@ -125,6 +125,48 @@ std::string toText(const Model& m, const Expr& e) {
   return out.str();
 }
 
+namespace {
+
+// Loosest first: until/release, =>, ||, &&, then the prefix operators and atoms.
+int ltlPrecedence(Ltl::Kind k) {
+  switch (k) {
+    case Ltl::Kind::Until: case Ltl::Kind::Release: return 1;
+    case Ltl::Kind::Implies: return 2;
+    case Ltl::Kind::Or: return 3;
+    case Ltl::Kind::And: return 4;
+    default: return 5;
+  }
+}
+
+void writeLtl(std::ostringstream& out, const Model& m, const Ltl& f, int context) {
+  int mine = ltlPrecedence(f.kind);
+  bool parens = mine < context;
+  if (parens) out << '(';
+  switch (f.kind) {
+    case Ltl::Kind::Atom: out << '{' << toText(m, f.atom) << '}'; break;
+    case Ltl::Kind::Not: out << '!'; writeLtl(out, m, f.args[0], 5); break;
+    case Ltl::Kind::Next: case Ltl::Kind::Always: case Ltl::Kind::Eventually:
+      out << ltlKeyword(f.kind) << ' ';
+      writeLtl(out, m, f.args[0], 5);
+      break;
+    default:
+      // Binary: left-nested chains of || and && need no parentheses; => and until nest to the right.
+      bool rightAssoc = f.kind == Ltl::Kind::Implies || f.kind == Ltl::Kind::Until || f.kind == Ltl::Kind::Release;
+      writeLtl(out, m, f.args[0], rightAssoc ? mine + 1 : mine);
+      out << ' ' << ltlKeyword(f.kind) << ' ';
+      writeLtl(out, m, f.args[1], rightAssoc ? mine : mine + 1);
+  }
+  if (parens) out << ')';
+}
+
+}  // namespace
+
+std::string toText(const Model& m, const Ltl& f) {
+  std::ostringstream out;
+  writeLtl(out, m, f, 0);
+  return out.str();
+}
+
 std::string toText(const Model& m) {
   std::ostringstream out;
   out << "semo-ir 1\n";
@@ -165,7 +207,8 @@ std::string toText(const Model& m) {
     if (r.kind != RuleKind::Step) out << " @kind(" << kindName(r.kind) << ')';
     if (!r.origin.empty()) out << " @origin(" << quoted(r.origin) << ')';
     if (!r.label.empty()) out << " @label(" << quoted(r.label) << ')';
-    if (r.weaklyFair) out << " @fair";
+    if (r.stronglyFair) out << " @strongly_fair";
+    else if (r.weaklyFair) out << " @fair";
     out << " :\n  " << toText(m, r.guard) << " ->";
     for (std::size_t b = 0; b < r.branches.size(); ++b) {
       const Branch& branch = r.branches[b];
@@ -193,6 +236,12 @@ std::string toText(const Model& m) {
     out << " : " << toText(m, inv.holds) << ";\n";
   }
   if (m.validEnd) out << "valid_end : " << toText(m, *m.validEnd) << ";\n";
+  if (!m.properties.empty()) out << '\n';
+  for (const Property& p : m.properties) {
+    out << "property " << (isPlainName(p.name, true) ? p.name : quoted(p.name));
+    if (!p.origin.empty()) out << " @origin(" << quoted(p.origin) << ')';
+    out << " : " << toText(m, p.formula) << ";\n";
+  }
   return out.str();
 }
 

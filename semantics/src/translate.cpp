@@ -45,6 +45,9 @@ void Translator::assumptions() {
   bool loseKnowledge = options_.lossOverride ? (*options_.lossOverride == "knowledge" || *options_.lossOverride == "all")
                                              : m_.assumptions.loseKnowledge;
   if (loseKnowledge) loss += std::string(loss.empty() ? "" : ", ") + "knowledge";
+  loseKnowledge_ = loseKnowledge;
+  fairLoss_ = options_.fairLossOverride.value_or(m_.assumptions.fairLoss);
+  if (!loss.empty()) loss += fairLoss_ ? " (fair: a message sent again and again gets through)" : " (unfair: may be lost for ever)";
   out_.assumptions.push_back("loss: " + (loss.empty() ? std::string("none") : loss));
   out_.assumptions.push_back("timing: any (asynchronous interleaving)");
 }

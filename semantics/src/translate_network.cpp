@@ -40,7 +40,8 @@ void Translator::knowledgeRules() {
                                            Expr::binary(Op::Ge, Expr::constant(n), theirs),
                                            Expr::binary(Op::Le, Expr::constant(n), Expr::binary(Op::Add, mine, theirs))});
             learn.branches.push_back({1.0, {{vars_[q].knows.at(k.name), Expr::constant(n)}}});
-            learn.weaklyFair = true;
+            // Under unfair loss every gossip message may be lost: a merge may never happen.
+            learn.weaklyFair = !loseKnowledge_ || fairLoss_;
             addRule(std::move(learn));
           }
         }
@@ -83,6 +84,9 @@ void Translator::eventRules() {
       }
       deliver.branches.push_back(std::move(branch));
       deliver.weaklyFair = true;
+      // Fair loss: a loss rule competes with delivery, so only strong fairness makes delivery win
+      // in the end.
+      deliver.stronglyFair = loseEvents_ && !event.delivery.reliable && fairLoss_;
       addRule(std::move(deliver));
       if (loseEvents_ && !event.delivery.reliable) {
         addRule(robotRule("lose." + event.name, q, ir::RuleKind::Loss, "loses event " + event.name,
@@ -112,6 +116,7 @@ void Translator::messageRules() {
       ir::Rule deliver = robotRule("deliver." + topic, q, ir::RuleKind::Delivery, "receives " + topic, pending,
                                    {{vars_[q].view.at(tp), Expr::var(msg)}, {msg, Expr::constant(0)}});
       deliver.weaklyFair = true;
+      deliver.stronglyFair = losePublish_ && fairLoss_;
       addRule(std::move(deliver));
       if (losePublish_) {
         addRule(robotRule("lose." + topic, q, ir::RuleKind::Loss, "loses " + topic, std::move(pending), {{msg, Expr::constant(0)}}));
@@ -255,6 +260,7 @@ void Translator::roundRules(Index b) {
     round.guard = ir::conjunction(std::move(guard));
     round.branches.push_back({1.0, std::move(updates)});
     round.weaklyFair = lostNames.empty();
+    round.stronglyFair = lostNames.empty() && loseHeartbeats_ && fairLoss_;
     addRule(std::move(round));
   }
 }
@@ -458,11 +464,17 @@ void Translator::invariants() {
     std::optional<Expr> holds;
     std::string why = "it is not of the form 'always <state formula>' (the LTL engine will check it)";
     if (p.formula->kind == model::Ltl::Kind::Always) holds = stateFormula(*p.formula->left, why);
-    if (!holds) {
-      diags_.warning(p.at, "property '" + p.name + "' is not checked by 'check': " + why);
+    if (holds) {
+      out_.invariants.push_back({p.name, origin(p.at), std::move(*holds)});
       continue;
     }
-    out_.invariants.push_back({p.name, origin(p.at), std::move(*holds)});
+    why.clear();
+    std::optional<ir::Ltl> formula = temporalFormula(*p.formula, why);
+    if (!formula) {
+      diags_.warning(p.at, "property '" + p.name + "' is not checked: " + why);
+      continue;
+    }
+    out_.properties.push_back({p.name, origin(p.at), std::move(*formula)});
   }
   if (wants("unique_leader")) {
     for (Index b : leaderBlocks_) {
@@ -483,6 +495,90 @@ void Translator::invariants() {
   }
 }
 
+std::optional<ir::Ltl> Translator::temporalFormula(const model::Ltl& f, std::string& why) const {
+  using K = model::Ltl::Kind;
+  auto one = [&](ir::Ltl::Kind kind) -> std::optional<ir::Ltl> {
+    auto a = temporalFormula(*f.left, why);
+    return a ? std::optional<ir::Ltl>(ir::Ltl::unary(kind, std::move(*a))) : std::nullopt;
+  };
+  auto two = [&](ir::Ltl::Kind kind) -> std::optional<ir::Ltl> {
+    auto a = temporalFormula(*f.left, why), b = temporalFormula(*f.right, why);
+    return a && b ? std::optional<ir::Ltl>(ir::Ltl::binary(kind, std::move(*a), std::move(*b))) : std::nullopt;
+  };
+  switch (f.kind) {
+    case K::Always: return one(ir::Ltl::Kind::Always);
+    case K::Eventually: return one(ir::Ltl::Kind::Eventually);
+    case K::Next: return one(ir::Ltl::Kind::Next);
+    case K::Not: return one(ir::Ltl::Kind::Not);
+    case K::Until: return two(ir::Ltl::Kind::Until);
+    case K::And: return two(ir::Ltl::Kind::And);
+    case K::Or: return two(ir::Ltl::Kind::Or);
+    case K::Implies: return two(ir::Ltl::Kind::Implies);
+    case K::Atom: break;
+  }
+  std::optional<Expr> atom = stateFormula(f, why);
+  return atom ? std::optional<ir::Ltl>(ir::Ltl::of(std::move(*atom))) : std::nullopt;
+}
+
+// The built-in liveness checks (specs/semantics.md, "Liveness"), as LTL over the state.
+void Translator::livenessProperties() {
+  using L = ir::Ltl;
+  auto alwaysEventually = [](Expr e) { return L::unary(L::Kind::Always, L::unary(L::Kind::Eventually, L::of(std::move(e)))); };
+  if (wants("mode_agreement")) {
+    for (Index t = 0; t < m_.teams.size(); ++t) {
+      const std::vector<Index>& robots = m_.teams[t].robots;
+      if (robots.size() < 2 || m_.teams[t].modes.size() < 2 || !vars_[robots.front()].mode) continue;
+      // Again and again, the live robots of the team are all in one mode, or an event is on its way
+      // to one of them (a team whose robots keep throwing events may keep changing modes; one that
+      // stays split with nothing on the way has lost an event for good).
+      std::vector<Expr> someMode;
+      for (std::size_t k = 0; k < m_.teams[t].modes.size(); ++k) {
+        std::vector<Expr> all;
+        for (Index r : robots) all.push_back(Expr::binary(Op::Or, lnot(alive(r)), eq(Expr::var(*vars_[r].mode), static_cast<std::int32_t>(k))));
+        someMode.push_back(ir::conjunction(std::move(all)));
+      }
+      for (Index r : robots) {
+        for (const auto& [e, var] : vars_[r].event) someMode.push_back(ir::conjunction({alive(r), Expr::var(var)}));
+      }
+      out_.properties.push_back({"mode_agreement[" + m_.teams[t].name + "]", "", alwaysEventually(ir::disjunction(std::move(someMode)))});
+    }
+  }
+  if (wants("knowledge_convergence")) {
+    for (const auto& [key, sites] : sites_) {
+      const auto& [team, service] = key;
+      const std::vector<Index>& robots = m_.teams[team].robots;
+      for (const strategy::Knowledge& k : m_.strategy.service(service)->knowledge) {
+        // Again and again, the live members working in the service hold the same facts.
+        std::vector<Expr> same;
+        for (std::size_t i = 0; i < robots.size(); ++i) {
+          for (std::size_t j = i + 1; j < robots.size(); ++j) {
+            same.push_back(Expr::binary(Op::Implies, ir::conjunction({inService(robots[i], service), inService(robots[j], service)}),
+                                        Expr::binary(Op::Eq, Expr::var(vars_[robots[i]].knows.at(k.name)),
+                                                     Expr::var(vars_[robots[j]].knows.at(k.name)))));
+          }
+        }
+        out_.properties.push_back({"knowledge_convergence[" + service + "." + k.name + "]", "",
+                                   alwaysEventually(ir::conjunction(std::move(same)))});
+      }
+    }
+  }
+  if (wants("leader_reelection")) {
+    for (Index b : leaderBlocks_) {
+      // Whenever candidates wait in the block with no live leader, a live leader comes, or no
+      // candidate waits any more.
+      std::vector<Expr> waiting;
+      for (Index c : candidates(b)) waiting.push_back(waitingForHeartbeats(c, b));
+      Expr someoneWaits = ir::disjunction(std::move(waiting));
+      L trigger = L::of(ir::conjunction({noLeader(b), someoneWaits}));
+      L answer = L::of(Expr::binary(Op::Or, lnot(noLeader(b)), lnot(someoneWaits)));
+      out_.properties.push_back({"leader_reelection[" + m_.services[m_.groupBlocks[b].service].name + "]",
+                                 origin(m_.groupBlocks[b].at),
+                                 L::unary(L::Kind::Always, L::binary(L::Kind::Implies, std::move(trigger),
+                                                                     L::unary(L::Kind::Eventually, std::move(answer))))});
+    }
+  }
+}
+
 std::optional<ir::Model> Translator::run() {
   assumptions();
   variables();
@@ -499,6 +595,7 @@ std::optional<ir::Model> Translator::run() {
   leaderRules();
   defaultRules();
   invariants();
+  livenessProperties();
   return std::move(out_);
 }
 

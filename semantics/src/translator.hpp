@@ -65,6 +65,9 @@ class Translator {
   void leaderRules();
   void defaultRules();
   void invariants();
+  void livenessProperties();
+  // A temporal property of the verify block; nullopt (and `why`) if an atom cannot be expressed.
+  [[nodiscard]] std::optional<ir::Ltl> temporalFormula(const model::Ltl& f, std::string& why) const;
   // A property without temporal operators as a state expression; else nullopt and `why`.
   [[nodiscard]] std::optional<Expr> stateFormula(const model::Ltl& f, std::string& why) const;
 
@@ -104,7 +107,8 @@ class Translator {
   std::map<Index, ir::VarId> channel_;              // per reliable topic
   std::vector<Index> leaderBlocks_;
   std::map<std::pair<Index, std::string>, std::vector<ServiceSite>> sites_;  // (team, group service)
-  bool losePublish_ = false, loseEvents_ = false, loseHeartbeats_ = false;
+  bool losePublish_ = false, loseEvents_ = false, loseHeartbeats_ = false, loseKnowledge_ = false;
+  bool fairLoss_ = false;
   std::size_t rulesPerPoint_ = 0;
 };
 

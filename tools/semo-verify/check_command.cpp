@@ -8,6 +8,7 @@
 
 #include "commands.hpp"
 #include "semo/checker/explicit_search.hpp"
+#include "semo/checker/liveness_search.hpp"
 #include "semo/checker/promela_export.hpp"
 #include "semo/semantics/ir_text.hpp"
 #include "semo/semantics/load.hpp"
@@ -32,13 +33,16 @@ std::optional<ir::Model> buildModel(const ModelInput& in) {
     } else {
       model = ir::parseText(sources, file, diags);
     }
-    if (in.crash || in.loss) diags.error({}, "--crash and --loss apply to missions; an IR file states its own assumptions");
+    if (in.crash || in.loss || in.fairLoss) {
+      diags.error({}, "--crash, --loss and --fair-loss/--unfair-loss apply to missions; an IR file states its own assumptions");
+    }
   } else if (!in.strategy) {
     diags.error({}, "checking a mission needs --strategy (or give an .ir file)");
   } else if (auto mission = loadMission({in.input, *in.strategy, in.robotsDir}, sources, diags)) {
     TranslationOptions options;
     options.crashOverride = in.crash;
     options.lossOverride = in.loss;
+    options.fairLossOverride = in.fairLoss;
     model = translate(*mission, options, sources, diags);
   }
   diags.sortByPosition();
@@ -51,6 +55,17 @@ std::string assumptionsLine(const ir::Model& m) {
   std::string out;
   for (const std::string& a : m.assumptions) out += (out.empty() ? "" : "; ") + a;
   return out.empty() ? "none stated" : out;
+}
+
+std::string fairnessLine(const ir::Model& m) {
+  std::size_t weak = 0, strong = 0;
+  for (const ir::Rule& r : m.rules) {
+    if (r.stronglyFair) ++strong;
+    else if (r.weaklyFair) ++weak;
+  }
+  std::string out = std::to_string(weak) + " rules weakly fair (robot steps, deliveries: enabled for ever, taken eventually)";
+  if (strong > 0) out += ", " + std::to_string(strong) + " strongly fair (deliveries under fair loss)";
+  return out;
 }
 
 // Writes through a temporary file and renames it, so that a failure never leaves half a file.
@@ -93,14 +108,37 @@ int runCheck(const CheckOptions& options) {
   checker::SearchResult r = checker::checkSafety(*model, limits);
   if (r.seconds >= 1.0 && !options.json && isatty(STDERR_FILENO) != 0) std::cerr << "\n";
 
+  // Liveness needs the whole product: not after a modelling error, and never depth-bounded.
+  checker::LivenessResult live;
+  std::string liveSkipped;
+  if (!model->properties.empty()) {
+    if (r.rangeError) liveSkipped = "not checked: the model has an error";
+    else if (options.maxDepth != UINT32_MAX) liveSkipped = "not checked: --max-depth bounds safety only";
+    if (liveSkipped.empty()) {
+      live = checker::checkLiveness(*model, limits);
+      if (live.seconds >= 1.0 && !options.json && isatty(STDERR_FILENO) != 0) std::cerr << "\n";
+    } else {
+      live.complete = false;
+      live.limitReached = liveSkipped;
+      for (const ir::Property& p : model->properties) live.properties.push_back({p.name, p.origin, checker::Verdict::Unknown, {}});
+    }
+  }
+
   bool violated = r.rangeError.has_value();
   for (const checker::PropertyResult& p : r.properties) violated = violated || p.verdict == checker::Verdict::Violated;
-  int code = violated ? kViolated : r.complete ? kOk : kLimit;
+  for (const checker::PropertyResult& p : live.properties) violated = violated || p.verdict == checker::Verdict::Violated;
+  int code = violated ? kViolated : r.complete && live.complete ? kOk : kLimit;
 
   if (options.json) {
     nlohmann::json props = nlohmann::json::array();
     for (const checker::PropertyResult& p : r.properties) {
       nlohmann::json jp = {{"name", p.name}, {"verdict", checker::verdictName(p.verdict)}, {"origin", p.origin}};
+      if (p.counterexample) jp["counterexample"] = nlohmann::json::parse(checker::traceToJson(*model, *p.counterexample));
+      jp["type"] = "safety";
+      props.push_back(jp);
+    }
+    for (const checker::PropertyResult& p : live.properties) {
+      nlohmann::json jp = {{"name", p.name}, {"verdict", checker::verdictName(p.verdict)}, {"origin", p.origin}, {"type", "liveness"}};
       if (p.counterexample) jp["counterexample"] = nlohmann::json::parse(checker::traceToJson(*model, *p.counterexample));
       props.push_back(jp);
     }
@@ -112,6 +150,11 @@ int runCheck(const CheckOptions& options) {
     if (!r.limitReached.empty()) root["limit"] = r.limitReached;
     if (r.depthBounded) root["boundedDepth"] = r.depth;
     if (r.rangeError) root["modelError"] = nlohmann::json::parse(checker::traceToJson(*model, *r.rangeError));
+    if (!model->properties.empty()) {
+      root["liveness"] = {{"productStates", live.states}, {"productTransitions", live.transitions},
+                          {"complete", live.complete}, {"seconds", live.seconds}};
+      if (!live.limitReached.empty()) root["liveness"]["limit"] = live.limitReached;
+    }
     std::cout << root.dump(2) << "\n";
     return code;
   }
@@ -136,7 +179,32 @@ int runCheck(const CheckOptions& options) {
     }
     std::cout << "\n";
   }
+  if (!model->properties.empty()) {
+    std::cout << "liveness:    ";
+    if (!liveSkipped.empty()) {
+      std::cout << liveSkipped << "\n";
+    } else {
+      std::cout << live.states << " product states, " << live.transitions << " transitions ("
+                << (live.complete ? "complete" : "PARTIAL: " + live.limitReached) << "), " << live.seconds << " s\n";
+      std::cout << "fairness:    " << fairnessLine(*model) << "\n";
+    }
+    for (const checker::PropertyResult& p : live.properties) {
+      std::cout << "  " << checker::verdictName(p.verdict) << "  " << p.name;
+      if (p.verdict == checker::Verdict::Proven) {
+        std::cout << "  (every fair run, under the assumptions above)";
+      } else if (p.verdict == checker::Verdict::Unknown && liveSkipped.empty()) {
+        std::cout << "  (no violation found in the part explored; the search was not complete)";
+      } else if (p.counterexample) {
+        std::cout << "  (lasso of " << p.counterexample->steps.size() << " steps below, loop from step "
+                  << (p.counterexample->loopStart + 1) << ")";
+      }
+      std::cout << "\n";
+    }
+  }
   for (const checker::PropertyResult& p : r.properties) {
+    if (p.counterexample) std::cout << "\n" << checker::traceToText(*model, *p.counterexample);
+  }
+  for (const checker::PropertyResult& p : live.properties) {
     if (p.counterexample) std::cout << "\n" << checker::traceToText(*model, *p.counterexample);
   }
   if (r.rangeError) {

@@ -27,6 +27,7 @@ struct ModelInput {
   std::optional<std::string> robotsDir;
   std::optional<int> crash;                // --crash N: overrides the verify block
   std::optional<std::string> loss;         // --loss none|publish|events|all
+  std::optional<bool> fairLoss;            // --fair-loss / --unfair-loss
 };
 
 struct CheckOptions {

@@ -33,6 +33,11 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(0, 100000));
     cmd->add_option("--loss", in.loss, "Which messages may be lost (overrides the verify block)")
         ->check(CLI::IsMember({"none", "publish", "events", "knowledge", "heartbeats", "all"}));
+    auto* fair = cmd->add_flag_callback("--fair-loss", [&in] { in.fairLoss = true; },
+                                        "A message sent again and again eventually gets through (overrides the verify block)");
+    auto* unfair = cmd->add_flag_callback("--unfair-loss", [&in] { in.fairLoss = false; },
+                                          "Messages that may be lost may be lost for ever (overrides the verify block)");
+    fair->excludes(unfair);
   };
 
   semo::cli::CheckOptions check;

@@ -75,6 +75,9 @@ class CompiledModel {
   void candidateRules(const Value* values, std::vector<std::uint32_t>& out) const;
   // Whether `value` fits the declared range of `var` (an update out of range is a model error).
   [[nodiscard]] bool inRange(ir::VarId var, Value value) const;
+  // The state after `branch`: `out` (distinct from `in`) becomes `in` with the branch's
+  // simultaneous assignments. False when a new value leaves its variable's range.
+  bool step(const CompiledBranch& branch, const Value* in, Value* out) const;
 
  private:
   const ir::Model* model_;

@@ -75,7 +75,8 @@ struct Rule {
   std::string label;   // what the step means for a person ("throws find_color_paper")
   Expr guard;
   std::vector<Branch> branches;
-  bool weaklyFair = false;  // for liveness: a rule enabled for ever is taken eventually
+  bool weaklyFair = false;    // for liveness: a rule enabled for ever is taken eventually
+  bool stronglyFair = false;  // a rule enabled again and again is taken again and again (fair loss)
 };
 
 struct Invariant {
@@ -84,11 +85,33 @@ struct Invariant {
   Expr holds;  // must hold in every reachable state
 };
 
+// A linear temporal logic formula over state predicates (Atom: an expression on the state).
+struct Ltl {
+  enum class Kind : std::uint8_t { Atom, Not, And, Or, Implies, Next, Always, Eventually, Until, Release };
+  Kind kind = Kind::Atom;
+  Expr atom;
+  std::vector<Ltl> args;  // one for the unary kinds, two for the binary ones
+
+  static Ltl of(Expr e) { return {Kind::Atom, std::move(e), {}}; }
+  static Ltl unary(Kind k, Ltl a) { return {k, {}, {std::move(a)}}; }
+  static Ltl binary(Kind k, Ltl a, Ltl b) { return {k, {}, {std::move(a), std::move(b)}}; }
+};
+const char* ltlKeyword(Ltl::Kind kind);  // "always", "until", ... ; "" for Atom
+
+// A property every infinite run must satisfy (liveness, or any LTL). Runs that end are extended by
+// repeating their last state.
+struct Property {
+  std::string name;
+  std::string origin;
+  Ltl formula;
+};
+
 struct Model {
   std::vector<std::string> robots;  // robot names, indexed by Rule::robot / Variable::robot
   std::vector<Variable> variables;
   std::vector<Rule> rules;
   std::vector<Invariant> invariants;
+  std::vector<Property> properties;
   // A state where no rule is enabled is a deadlock unless this holds (e.g. every robot has
   // finished or crashed). Absent: deadlock_freedom is not checked.
   std::optional<Expr> validEnd;

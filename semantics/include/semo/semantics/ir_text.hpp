@@ -11,6 +11,7 @@ namespace semo::ir {
 
 std::string toText(const Model& model);
 std::string toText(const Model& model, const Expr& e);
+std::string toText(const Model& model, const Ltl& f);  // atoms in braces: always ({x == 1} => eventually {y > 0})
 
 // Parses a model; errors (with positions) go to `diags`; nullopt if there was any.
 std::optional<Model> parseText(const SourceManager& sources, FileId file, DiagnosticEngine& diags);

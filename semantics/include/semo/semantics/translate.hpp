@@ -12,6 +12,7 @@ namespace semo {
 struct TranslationOptions {
   std::optional<int> crashOverride;         // --crash N: every team may lose up to N robots
   std::optional<std::string> lossOverride;  // --loss none|publish|events|knowledge|heartbeats|all
+  std::optional<bool> fairLossOverride;     // --fair-loss / --unfair-loss
 };
 
 // Returns nullopt (with diagnostics) when the mission uses something the translation cannot bound.

@@ -1,0 +1,108 @@
+#pragma once
+// The store of explored states shared by the search engines: every state once, packed, in the
+// order found, with the parent and rule that first reached it (so a path back to the start is a
+// walk up the parents; in breadth-first order it is a shortest one).
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "semo/checker/compiled_model.hpp"
+#include "semo/checker/trace.hpp"
+
+namespace semo::checker::detail {
+
+constexpr std::uint32_t kNoParent = 0xffffffffu;
+
+// Every reachable state once, packed, in BFS order; with the parent and rule that first reached it.
+class StateStore {
+ public:
+  // `words`: 64-bit words per state (the engines may append words of their own after the model's).
+  explicit StateStore(std::size_t words) : words_(words), table_(1u << 16, 0) {}
+
+  [[nodiscard]] std::size_t size() const { return parent_.size(); }
+  [[nodiscard]] const std::uint64_t* state(std::size_t i) const { return &data_[i * words_]; }
+  [[nodiscard]] std::uint32_t parent(std::size_t i) const { return parent_[i]; }
+  [[nodiscard]] std::uint32_t via(std::size_t i) const { return via_[i]; }
+  [[nodiscard]] std::uint64_t bytes() const {
+    return data_.capacity() * 8 + table_.capacity() * 4 + parent_.capacity() * 4 + via_.capacity() * 4;
+  }
+  [[nodiscard]] std::uint64_t bytesPerState() const { return words_ * 8 + 4 + 4 + 8; }  // data, parent, via, table
+
+  [[nodiscard]] bool contains(const std::uint64_t* s) const {
+    std::size_t mask = table_.size() - 1;
+    for (std::size_t slot = hash(s) & mask;; slot = (slot + 1) & mask) {
+      std::uint32_t entry = table_[slot];
+      if (entry == 0) return false;
+      if (std::equal(s, s + words_, state(entry - 1))) return true;
+    }
+  }
+
+  // Returns the state's index and whether it is new.
+  std::pair<std::uint32_t, bool> insert(const std::uint64_t* s, std::uint32_t parent, std::uint32_t via) {
+    if ((parent_.size() + 1) * 2 > table_.size()) grow();
+    std::size_t mask = table_.size() - 1;
+    for (std::size_t slot = hash(s) & mask;; slot = (slot + 1) & mask) {
+      std::uint32_t entry = table_[slot];
+      if (entry == 0) {
+        auto index = static_cast<std::uint32_t>(parent_.size());
+        table_[slot] = index + 1;
+        data_.insert(data_.end(), s, s + words_);
+        parent_.push_back(parent);
+        via_.push_back(via);
+        return {index, true};
+      }
+      if (std::equal(s, s + words_, state(entry - 1))) return {entry - 1, false};
+    }
+  }
+
+ private:
+  [[nodiscard]] std::size_t hash(const std::uint64_t* s) const {
+    std::uint64_t h = 0x9e3779b97f4a7c15ull;
+    for (std::size_t i = 0; i < words_; ++i) {
+      h ^= s[i] + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+      h *= 0xff51afd7ed558ccdull;
+      h ^= h >> 33;
+    }
+    return static_cast<std::size_t>(h);
+  }
+
+  void grow() {
+    std::vector<std::uint32_t> bigger(table_.size() * 2, 0);
+    std::size_t mask = bigger.size() - 1;
+    for (std::uint32_t i = 0; i < parent_.size(); ++i) {
+      std::size_t slot = hash(state(i)) & mask;
+      while (bigger[slot] != 0) slot = (slot + 1) & mask;
+      bigger[slot] = i + 1;
+    }
+    table_.swap(bigger);
+  }
+
+  std::size_t words_;
+  std::vector<std::uint64_t> data_;
+  std::vector<std::uint32_t> table_;
+  std::vector<std::uint32_t> parent_;
+  std::vector<std::uint32_t> via_;  // rule << 8 | branch
+};
+
+inline Trace traceTo(const CompiledModel& cm, const StateStore& store, std::size_t target) {
+  std::vector<std::size_t> path;
+  for (std::size_t i = target; i != kNoParent; i = store.parent(i)) path.push_back(i);
+  std::reverse(path.begin(), path.end());
+  const StateLayout& layout = cm.layout();
+  std::vector<Value> before(layout.variables()), after(layout.variables());
+  Trace trace;
+  layout.unpack(store.state(path.front()), before.data());
+  trace.initial = before;
+  for (std::size_t k = 1; k < path.size(); ++k) {
+    layout.unpack(store.state(path[k]), after.data());
+    Step step{store.via(path[k]) >> 8, store.via(path[k]) & 0xffu, {}};
+    for (ir::VarId v = 0; v < after.size(); ++v) {
+      if (before[v] != after[v]) step.changes.push_back({v, before[v], after[v]});
+    }
+    trace.steps.push_back(std::move(step));
+    before.swap(after);
+  }
+  return trace;
+}
+
+}  // namespace semo::checker::detail
