@@ -134,13 +134,18 @@ class FairCycleSearch {
     }
   }
 
-  // A fair accepting strongly connected set of product states, or empty.
+  // A fair accepting strongly connected set of product states, or empty. Of several, the one that
+  // a breadth-first prefix reaches first, for the shortest way into the loop.
   std::vector<std::uint32_t> find() {
     std::vector<std::uint32_t> all(p_.size());
     for (std::uint32_t n = 0; n < all.size(); ++n) all[n] = n;
     std::uint32_t stamp = ++stamp_;
     for (std::uint32_t n : all) member_[n] = stamp;
-    for (std::vector<std::uint32_t>& component : components(all, stamp)) {
+    std::vector<std::vector<std::uint32_t>> candidates = components(all, stamp);
+    std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) {
+      return *std::min_element(a.begin(), a.end()) < *std::min_element(b.begin(), b.end());
+    });
+    for (std::vector<std::uint32_t>& component : candidates) {
       if (analyze(component)) return found_;
     }
     return {};

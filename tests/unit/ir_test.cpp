@@ -395,7 +395,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"unexpected_character", "semo-ir 1;\nvar x : 0..3;\ninvariant i : x $ 1;\n", "3:17: unexpected character '$'"},
         BadInput{"unterminated_string", "semo-ir 1;\nassume \"no end;\n", "2:8: unterminated string"},
         BadInput{"unknown_item", "semo-ir 1;\nconst x = 1;\n",
-                 "2:1: expected 'var', 'rule', 'invariant', 'valid_end', 'robots' or 'assume', found 'const'"},
+                 "2:1: expected 'var', 'rule', 'invariant', 'property', 'valid_end', 'robots' or 'assume', found 'const'"},
         BadInput{"unclosed_parenthesis", "semo-ir 1;\nvar x : 0..3;\ninvariant i : (x > 1;\n",
                  "3:21: expected ')' to close the parenthesis, found ';'"}),
     [](const ::testing::TestParamInfo<BadInput>& info) { return std::string(info.param.what); });

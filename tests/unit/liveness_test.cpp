@@ -1,0 +1,140 @@
+// The liveness engine on tiny models whose fair runs are known by hand: fairness kinds, runs that
+// end, the temporal operators, and the Büchi construction's acceptance sets.
+#include <gtest/gtest.h>
+
+#include "semo/checker/buchi.hpp"
+#include "semo/checker/liveness_search.hpp"
+#include "semo/semantics/ir_text.hpp"
+
+namespace semo::checker {
+namespace {
+
+ir::Model parse(const std::string& text) {
+  SourceManager sources;
+  DiagnosticEngine diags(sources);
+  FileId file = sources.add("test.ir", text);
+  std::optional<ir::Model> m = ir::parseText(sources, file, diags);
+  if (!m) {
+    for (const Diagnostic& d : diags.diagnostics()) ADD_FAILURE() << d.range.begin.line << ":" << d.range.begin.column << ": " << d.message;
+    return {};
+  }
+  return *m;
+}
+
+Verdict verdictOf(const std::string& model, const std::string& property, LivenessResult* out = nullptr) {
+  ir::Model m = parse(model + "property p : " + property + ";\n");
+  LivenessResult r = checkLiveness(m, {});
+  EXPECT_TRUE(r.complete);
+  EXPECT_EQ(r.properties.size(), 1u);
+  if (r.properties.empty()) return Verdict::Unknown;
+  Verdict v = r.properties[0].verdict;
+  EXPECT_EQ(v == Verdict::Violated, r.properties[0].counterexample.has_value());
+  if (out != nullptr) *out = std::move(r);
+  return v;
+}
+
+// c counts to 3 and stays; `idle` may be taken at any time.
+std::string counter(const std::string& incFairness) {
+  return "semo-ir 1;\nvar c : 0..3 = 0;\nrule inc " + incFairness + " : c < 3 -> c' = c + 1;\nrule idle : true -> skip;\n";
+}
+
+TEST(Liveness, WeakFairnessForcesAStepThatStaysEnabled) {
+  EXPECT_EQ(verdictOf(counter("@fair"), "eventually {c == 3}"), Verdict::Proven);
+  LivenessResult r;
+  EXPECT_EQ(verdictOf(counter(""), "eventually {c == 3}", &r), Verdict::Violated);
+  // Unfair: idling for ever at c = 0 is a run; the shortest lasso loops on `idle` at once.
+  const Trace& t = *r.properties[0].counterexample;
+  EXPECT_EQ(t.kind, "lasso");
+  EXPECT_EQ(t.loopStart, 0u);
+  ASSERT_EQ(t.steps.size(), 1u);
+  EXPECT_EQ(t.steps[0].rule, 1u) << "the loop is `idle`";
+}
+
+TEST(Liveness, SafetyFormulasAndNextAndUntil) {
+  std::string m = counter("@fair");
+  EXPECT_EQ(verdictOf(m, "always {c <= 3}"), Verdict::Proven);
+  EXPECT_EQ(verdictOf(m, "always {c < 3}"), Verdict::Violated);
+  // idle may come first, so c is not 1 in the second state of every run.
+  EXPECT_EQ(verdictOf(m, "next {c == 1}"), Verdict::Violated);
+  EXPECT_EQ(verdictOf(m, "next {c <= 1}"), Verdict::Proven);
+  EXPECT_EQ(verdictOf(m, "{c == 0} until {c == 1}"), Verdict::Proven);
+  EXPECT_EQ(verdictOf(m, "{c == 0} until {c == 2}"), Verdict::Violated);
+  EXPECT_EQ(verdictOf(m, "eventually always {c == 3}"), Verdict::Proven);
+  EXPECT_EQ(verdictOf(m, "always ({c == 1} => eventually {c == 2})"), Verdict::Proven);
+  EXPECT_EQ(verdictOf(m, "always eventually {c == 0}"), Verdict::Violated);
+  EXPECT_EQ(verdictOf(m, "{false} release {c <= 3}"), Verdict::Proven);
+}
+
+// A message that may be lost, resent while it is not delivered.
+std::string lossy(const std::string& deliverFairness) {
+  return "semo-ir 1;\nvar msg : bool = false;\nvar got : bool = false;\n"
+         "rule send @fair : !msg && !got -> msg' = true;\n"
+         "rule lose @kind(loss) : msg -> msg' = false;\n"
+         "rule deliver " + deliverFairness + " : msg -> msg' = false, got' = true;\n";
+}
+
+TEST(Liveness, StrongFairnessMakesARetriedDeliveryHappen) {
+  // Weakly fair delivery is not enough: loss disables it every time (send, lose, send, lose, ...).
+  LivenessResult r;
+  EXPECT_EQ(verdictOf(lossy("@fair"), "eventually {got}", &r), Verdict::Violated);
+  const Trace& t = *r.properties[0].counterexample;
+  ASSERT_EQ(t.steps.size(), 2u);
+  EXPECT_EQ(t.loopStart, 0u);
+  // Strongly fair: enabled again and again, so taken in the end.
+  EXPECT_EQ(verdictOf(lossy("@strongly_fair"), "eventually {got}"), Verdict::Proven);
+}
+
+TEST(Liveness, ARunThatEndsStaysInItsLastState) {
+  std::string m = "semo-ir 1;\nvar c : 0..2 = 0;\nrule inc @fair : c < 2 -> c' = c + 1;\n";
+  EXPECT_EQ(verdictOf(m, "eventually always {c == 2}"), Verdict::Proven);
+  LivenessResult r;
+  EXPECT_EQ(verdictOf(m, "always eventually {c == 0}", &r), Verdict::Violated);
+  const Trace& t = *r.properties[0].counterexample;
+  EXPECT_EQ(t.steps.size(), 2u);
+  EXPECT_EQ(t.loopStart, 2u) << "no step repeats: the run stays at c = 2";
+  EXPECT_NE(traceToText(parse(m), t).find("stays in this state for ever"), std::string::npos);
+}
+
+TEST(Liveness, FairLoopTakesEveryFairRuleThatIsAlwaysEnabled) {
+  // Two fair togglers: each keeps toggling, but not in step (ta ta tb tb ... never has a && b).
+  std::string m = "semo-ir 1;\nvar a : bool = false;\nvar b : bool = false;\n"
+                  "rule ta @fair : true -> a' = !a;\nrule tb @fair : true -> b' = !b;\n";
+  EXPECT_EQ(verdictOf(m, "always eventually {a}"), Verdict::Proven);
+  EXPECT_EQ(verdictOf(m, "always eventually {a && b}"), Verdict::Violated);
+  LivenessResult r;
+  EXPECT_EQ(verdictOf(m, "eventually always {a}", &r), Verdict::Violated);
+  const Trace& t = *r.properties[0].counterexample;
+  bool tookA = false, tookB = false;
+  for (std::size_t i = t.loopStart; i < t.steps.size(); ++i) {
+    tookA = tookA || t.steps[i].rule == 0;
+    tookB = tookB || t.steps[i].rule == 1;
+  }
+  EXPECT_TRUE(tookA && tookB) << "the loop is fair to both rules";
+}
+
+TEST(Buchi, AcceptanceSetsOnePerUntil) {
+  ir::Model m = parse("semo-ir 1;\nvar x : bool;\nproperty p : always eventually {x} && eventually {!x};\n");
+  Buchi b = buildBuchi(m.properties[0].formula);
+  EXPECT_EQ(b.acceptanceSets, 2u);
+  EXPECT_FALSE(b.states.empty());
+  Buchi safety = buildBuchi(ir::Ltl::unary(ir::Ltl::Kind::Always, ir::Ltl::of(ir::Expr::var(0))));
+  EXPECT_EQ(safety.acceptanceSets, 1u) << "no until: every state accepts";
+  for (const BuchiState& s : safety.states) EXPECT_EQ(s.acceptance, 1u);
+}
+
+TEST(IrText, PropertiesReadBackTheSame) {
+  std::string text = "semo-ir 1;\nvar c : 0..3 = 0;\nrule inc @strongly_fair : c < 3 -> c' = c + 1;\n"
+                     "property p1 : always ({c == 1} => eventually {c == 3});\n"
+                     "property \"p 2\" @origin(\"x:1:2\") : ({c > 0} until {c > 1} || next !{c == 0}) && {true} release always {c < 3};\n";
+  ir::Model m = parse(text);
+  ASSERT_EQ(m.properties.size(), 2u);
+  EXPECT_TRUE(m.rules[0].stronglyFair && m.rules[0].weaklyFair);
+  EXPECT_EQ(m.properties[1].origin, "x:1:2");
+  EXPECT_EQ(m.properties[1].formula.kind, ir::Ltl::Kind::Release);
+  std::string once = ir::toText(m);
+  EXPECT_EQ(ir::toText(parse(once)), once);
+  EXPECT_NE(once.find("rule inc @strongly_fair"), std::string::npos) << once;
+}
+
+}  // namespace
+}  // namespace semo::checker
