@@ -153,6 +153,8 @@ class Tableau {
     }
     if (untils.size() > 64) throw std::length_error("a property has more than 64 'until'/'eventually' subformulas");
     out.acceptanceSets = untils.empty() ? 1 : untils.size();
+    if (atoms_.size() > 64) throw std::length_error("a property has more than 64 state formulas");
+    for (const ir::Expr* atom : atoms_) out.atoms.push_back(*atom);
     out.states.resize(nodes_.size());
     for (std::size_t n = 0; n < nodes_.size(); ++n) {
       const Node& node = nodes_[n];
@@ -160,8 +162,7 @@ class Tableau {
       for (int g : node.old) {
         const Formula& f = formulas_[static_cast<std::size_t>(g)];
         if (f.kind != Formula::Kind::Literal) continue;
-        const ir::Expr& e = *atoms_[static_cast<std::size_t>(f.atom)];
-        s.label.push_back(f.positive ? e : ir::Expr::unary(ir::Op::Not, e));
+        (f.positive ? s.mustHold : s.mustFail) |= 1ull << f.atom;
       }
       for (int from : node.incoming) {
         if (from == kInit) s.initial = true;

@@ -17,7 +17,9 @@ using detail::kNoParent;
 using detail::StateStore;
 using Clock = std::chrono::steady_clock;
 
-// The step of a run that has ended: it stays in its last state for ever (no rule is enabled).
+// Time passing with no step: allowed where no fair rule is enabled (where one is, staying for ever
+// would be unfair to it, and staying a while changes nothing the properties can see). So a run may
+// end in a state where only unfair rules (loss, crash, the environment) could move.
 constexpr std::uint32_t kStutter = 0xffffffu;
 
 struct Edge {
@@ -31,7 +33,7 @@ std::uint32_t ruleOf(std::uint32_t via) { return via >> 8; }
 class Product {
  public:
   Product(const CompiledModel& cm, const Buchi& ba) : cm_(cm), ba_(ba), store_(cm.layout().words() + 1) {
-    for (const BuchiState& s : ba.states) labels_.emplace_back(ir::conjunction(s.label));
+    for (const ir::Expr& atom : ba.atoms) atoms_.emplace_back(atom);
   }
 
   // False when a limit stopped the exploration (then `why` says which).
@@ -39,39 +41,48 @@ class Product {
     const StateLayout& layout = cm_.layout();
     std::vector<Value> values = cm_.initialValues(), next(values.size());
     std::vector<std::uint64_t> packed(layout.words() + 1);
+    std::uint64_t initialBits = atomBits(values.data());
     for (std::uint32_t q = 0; q < ba_.states.size(); ++q) {
-      if (ba_.states[q].initial && labels_[q].eval(values.data()) != 0) insert(values.data(), q, kNoParent, 0, packed);
+      if (ba_.states[q].initial && labelHolds(q, initialBits)) insert(values.data(), q, kNoParent, 0, packed);
     }
     std::vector<std::uint32_t> candidates;
-    struct Successor {
-      std::uint32_t via;
-      std::vector<Value> values;
-    };
-    std::vector<Successor> successors;
+    // The model successors of the state being expanded: their rules, and their values back to back.
+    std::vector<std::uint32_t> vias;
+    std::vector<Value> successorValues;
+    const std::size_t width = values.size();
     double nextReport = 1.0;
     for (std::size_t i = 0; i < store_.size(); ++i) {
       edgeStart_.push_back(edges_.size());
       layout.unpack(store_.state(i), values.data());
       std::uint32_t q = automatonState(i);
-      successors.clear();
+      vias.clear();
+      successorValues.clear();
       cm_.candidateRules(values.data(), candidates);
+      bool fairEnabled = false;
       for (std::uint32_t r : candidates) {
         const CompiledRule& rule = cm_.rules()[r];
         if (rule.guard.eval(values.data()) == 0) continue;
+        fairEnabled = fairEnabled || cm_.model().rules[r].weaklyFair || cm_.model().rules[r].stronglyFair;
         for (std::size_t b = 0; b < rule.branches.size(); ++b) {
           if (!cm_.step(rule.branches[b], values.data(), next.data())) {
             why = "an update left a variable's declared range (run 'check' for the trace)";
             return false;
           }
-          successors.push_back({r << 8 | static_cast<std::uint32_t>(b), next});
+          vias.push_back(r << 8 | static_cast<std::uint32_t>(b));
+          successorValues.insert(successorValues.end(), next.begin(), next.end());
         }
       }
-      if (successors.empty()) successors.push_back({kStutter << 8, values});
-      for (const Successor& s : successors) {
+      if (!fairEnabled) {
+        vias.push_back(kStutter << 8);
+        successorValues.insert(successorValues.end(), values.begin(), values.end());
+      }
+      for (std::size_t k = 0; k < vias.size(); ++k) {
+        const Value* succ = successorValues.data() + k * width;
+        std::uint64_t bits = atomBits(succ);
         for (std::uint32_t target : ba_.states[q].successors) {
-          if (labels_[target].eval(s.values.data()) == 0) continue;
-          std::uint32_t index = insert(s.values.data(), target, static_cast<std::uint32_t>(i), s.via, packed);
-          edges_.push_back({index, s.via});
+          if (!labelHolds(target, bits)) continue;
+          std::uint32_t index = insert(succ, target, static_cast<std::uint32_t>(i), vias[k], packed);
+          edges_.push_back({index, vias[k]});
         }
       }
       if (store_.size() + statesBefore >= limits.maxStates && i + 1 < store_.size()) {
@@ -115,7 +126,18 @@ class Product {
   const CompiledModel& cm_;
   const Buchi& ba_;
   StateStore store_;
-  std::vector<Program> labels_;
+  std::vector<Program> atoms_;
+
+  // Which atoms hold in a model state (bit k: Buchi::atoms[k]); a label is then two mask tests.
+  [[nodiscard]] std::uint64_t atomBits(const Value* v) const {
+    std::uint64_t bits = 0;
+    for (std::size_t k = 0; k < atoms_.size(); ++k) bits |= static_cast<std::uint64_t>(atoms_[k].eval(v) != 0) << k;
+    return bits;
+  }
+  [[nodiscard]] bool labelHolds(std::uint32_t q, std::uint64_t bits) const {
+    const BuchiState& s = ba_.states[q];
+    return (bits & s.mustHold) == s.mustHold && (bits & s.mustFail) == 0;
+  }
   std::vector<std::uint64_t> edgeStart_;
   std::vector<Edge> edges_;
 };

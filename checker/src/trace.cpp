@@ -57,7 +57,8 @@ std::string traceToText(const ir::Model& m, const Trace& t) {
   }
   if (t.kind == "lasso") {
     if (t.loopStart >= t.steps.size()) {
-      out << "  then no rule is enabled: the run stays in this state for ever, and " << t.property << " does not hold\n";
+      out << "  then the run stays in this state for ever (no rule that must be taken in the end is enabled), and "
+          << t.property << " does not hold\n";
     } else {
       out << "  then back to the state before step " << (t.loopStart + 1) << ": the loop repeats for ever, and "
           << t.property << " does not hold\n";

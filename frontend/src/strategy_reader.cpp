@@ -259,8 +259,12 @@ class StrategyReader {
       xml_.checkChildren(d, {});
       Dissemination dis;
       dis.at = xml_.at(d);
-      if (const char* via = d->Attribute("via"); via != nullptr && std::string_view(via) != "broadcast") {
-        xml_.attributeError(d, "via", std::string("dissemination via '") + via + "' is not supported; use 'broadcast'");
+      if (const char* via = d->Attribute("via"); via != nullptr) {
+        if (std::string_view(via) == "broadcast" || std::string_view(via) == "reliable") {
+          dis.via = via;
+        } else {
+          xml_.attributeError(d, "via", std::string("dissemination via '") + via + "' is not supported; use 'broadcast' or 'reliable'");
+        }
       }
       if (auto period = xml_.durationMicros(d, "period")) {
         if (*period < 1000) xml_.attributeError(d, "period", "the gossip period must be at least 1 MSEC");

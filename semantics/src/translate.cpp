@@ -324,12 +324,37 @@ void Translator::blockExitRules(Index robot, std::size_t planIndex, std::size_t 
 // Working in a group service: the environment may show the robot a fact it does not hold; the
 // robot leaves when it holds as many facts as the goal asks (never, without a goal). Knowledge is
 // counted, not listed (specs/semantics.md): which facts a robot holds matters to no property here.
+// Synchronised start (the paper's group semantics): a robot starts working in a group service
+// only when no other live robot running the same service is still on its way to the block or
+// forming it; those already in an arm, or elsewhere, do not hold it up.
+Expr Translator::groupStarted(Index robot, std::size_t planIndex, std::size_t at) const {
+  const PlanProgram& prog = programs_[m_.robots[robot].team][planIndex];
+  const Index service = prog.code[at].service;
+  std::vector<Expr> ready;
+  for (const BlockRange& range : prog.blocks) {
+    if (range.armFirst.empty() || at < range.armFirst.front() || at >= range.last) continue;
+    for (Index q : m_.teams[m_.robots[robot].team].robots) {
+      if (q == robot || !vars_[q].pc[planIndex]) continue;
+      Expr pc = Expr::var(*vars_[q].pc[planIndex]);
+      std::vector<Expr> notYet;  // in the service, at the block's formation or before it
+      for (std::size_t i = 1; i < prog.code.size(); ++i) {
+        if (prog.code[i].service == service && prog.code[i].controlPoint && (i < range.first || i >= range.last)) {
+          notYet.push_back(eq(pc, static_cast<std::int32_t>(i)));
+        }
+      }
+      if (!notYet.empty()) ready.push_back(Expr::binary(Op::Or, lnot(alive(q)), lnot(ir::disjunction(std::move(notYet)))));
+    }
+  }
+  return ir::conjunction(std::move(ready));
+}
+
 void Translator::groupServiceRules(Index robot, std::size_t planIndex, std::size_t at) {
   const PlanProgram& prog = programs_[m_.robots[robot].team][planIndex];
   const Instr& in = prog.code[at];
   const strategy::Service& sv = *m_.strategy.service(in.stmt->service);
   const RobotVars& v = vars_[robot];
-  Expr here = ir::conjunction({alive(robot), eq(Expr::var(*v.pc[planIndex]), static_cast<std::int32_t>(at))});
+  Expr here = ir::conjunction({alive(robot), eq(Expr::var(*v.pc[planIndex]), static_cast<std::int32_t>(at)),
+                               groupStarted(robot, planIndex, at)});
   for (const strategy::Knowledge& k : sv.knowledge) {
     ir::VarId knows = v.knows.at(k.name);
     ir::Rule discover;
@@ -344,6 +369,7 @@ void Translator::groupServiceRules(Index robot, std::size_t planIndex, std::size
   }
   if (!sv.goal) return;
   Path path;
+  path.guard.push_back(groupStarted(robot, planIndex, at));
   path.guard.push_back(Expr::binary(Op::Ge, Expr::var(v.knows.at(sv.goal->knowledge)), Expr::constant(static_cast<std::int32_t>(sv.goal->count))));
   path.words.push_back("reaches the goal of " + sv.name);
   walk(robot, planIndex, in.next, std::move(path), at, 1);

@@ -16,7 +16,7 @@ Expr Translator::inService(Index robot, const std::string& service) const {
   return ir::conjunction({alive(robot), ir::disjunction(std::move(at))});
 }
 
-// Gossip: a robot working in a group service learns the facts another member holds. With facts
+// Gossip: a robot working in a group service learns the facts another live robot of its team holds. With facts
 // counted, the merge of q's c_q facts with r's c_r facts holds between max(c_q, c_r) and
 // min(|facts|, c_q + c_r) facts: every such count is a possible outcome (one rule each). A lost
 // gossip message is a merge that has not happened yet, so loss needs no rule of its own.
@@ -35,13 +35,17 @@ void Translator::knowledgeRules() {
             learn.robot = static_cast<std::int32_t>(q);
             learn.kind = ir::RuleKind::Delivery;
             learn.label = "learns " + k.name + " from " + m_.robots[r].name + " (now holds " + std::to_string(n) + ")";
-            learn.guard = ir::conjunction({inService(q, service), inService(r, service),
+            // The teacher need not be working in the service any more: a robot keeps answering
+            // gossip about what it knows after its own part of the service is over.
+            learn.guard = ir::conjunction({inService(q, service), alive(r),
                                            Expr::binary(Op::Lt, mine, Expr::constant(n)),
                                            Expr::binary(Op::Ge, Expr::constant(n), theirs),
                                            Expr::binary(Op::Le, Expr::constant(n), Expr::binary(Op::Add, mine, theirs))});
             learn.branches.push_back({1.0, {{vars_[q].knows.at(k.name), Expr::constant(n)}}});
-            // Under unfair loss every gossip message may be lost: a merge may never happen.
-            learn.weaklyFair = !loseKnowledge_ || fairLoss_;
+            // Under unfair loss every broadcast gossip message may be lost: a merge may never
+            // happen. Reliable dissemination resends until acknowledged.
+            bool reliable = sv.dissemination && sv.dissemination->via == "reliable";
+            learn.weaklyFair = !loseKnowledge_ || fairLoss_ || reliable;
             addRule(std::move(learn));
           }
         }
@@ -451,8 +455,20 @@ void Translator::invariants() {
     std::vector<Expr> finished;
     for (Index r = 0; r < m_.robots.size(); ++r) {
       std::vector<Expr> done;
-      for (const std::optional<ir::VarId>& pc : vars_[r].pc) {
-        if (pc) done.push_back(eq(Expr::var(*pc), 0));
+      Index team = m_.robots[r].team;
+      for (std::size_t p = 0; p < vars_[r].pc.size(); ++p) {
+        const std::optional<ir::VarId>& pc = vars_[r].pc[p];
+        if (!pc) continue;
+        // A plan is done, or works in a group service without a goal, which runs until the mode
+        // changes: the robot is busy, not stuck, even when no fact is left to find.
+        std::vector<Expr> atRest{eq(Expr::var(*pc), 0)};
+        for (const auto& [key, sites] : sites_) {
+          if (key.first != team || m_.strategy.service(key.second)->goal) continue;
+          for (const ServiceSite& site : sites) {
+            if (site.plan == p) atRest.push_back(eq(Expr::var(*pc), static_cast<std::int32_t>(site.instr)));
+          }
+        }
+        done.push_back(ir::disjunction(std::move(atRest)));
       }
       if (done.empty()) continue;
       finished.push_back(Expr::binary(Op::Or, lnot(alive(r)), ir::conjunction(std::move(done))));
@@ -528,17 +544,13 @@ void Translator::livenessProperties() {
     for (Index t = 0; t < m_.teams.size(); ++t) {
       const std::vector<Index>& robots = m_.teams[t].robots;
       if (robots.size() < 2 || m_.teams[t].modes.size() < 2 || !vars_[robots.front()].mode) continue;
-      // Again and again, the live robots of the team are all in one mode, or an event is on its way
-      // to one of them (a team whose robots keep throwing events may keep changing modes; one that
-      // stays split with nothing on the way has lost an event for good).
+      // Again and again, the live robots of the team are all in one mode. (A team whose robots react
+      // to their own sensing at different times may fail this for ever; the lasso shows how.)
       std::vector<Expr> someMode;
       for (std::size_t k = 0; k < m_.teams[t].modes.size(); ++k) {
         std::vector<Expr> all;
         for (Index r : robots) all.push_back(Expr::binary(Op::Or, lnot(alive(r)), eq(Expr::var(*vars_[r].mode), static_cast<std::int32_t>(k))));
         someMode.push_back(ir::conjunction(std::move(all)));
-      }
-      for (Index r : robots) {
-        for (const auto& [e, var] : vars_[r].event) someMode.push_back(ir::conjunction({alive(r), Expr::var(var)}));
       }
       out_.properties.push_back({"mode_agreement[" + m_.teams[t].name + "]", "", alwaysEventually(ir::disjunction(std::move(someMode)))});
     }
@@ -564,10 +576,21 @@ void Translator::livenessProperties() {
   }
   if (wants("leader_reelection")) {
     for (Index b : leaderBlocks_) {
-      // Whenever candidates wait in the block with no live leader, a live leader comes, or no
-      // candidate waits any more.
+      // Whenever live candidates work in the block (inside an arm) with no live leader, a live
+      // leader comes, or no candidate is left inside.
       std::vector<Expr> waiting;
-      for (Index c : candidates(b)) waiting.push_back(waitingForHeartbeats(c, b));
+      Index team = m_.groupBlocks[b].team;
+      for (Index c : candidates(b)) {
+        for (std::size_t p = 0; p < programs_[team].size(); ++p) {
+          if (!vars_[c].pc[p]) continue;
+          for (const BlockRange& range : programs_[team][p].blocks) {
+            if (range.block != b || range.armFirst.empty()) continue;
+            Expr pc = Expr::var(*vars_[c].pc[p]);
+            waiting.push_back(ir::conjunction({alive(c), Expr::binary(Op::Ge, pc, Expr::constant(static_cast<std::int32_t>(range.armFirst.front()))),
+                                               Expr::binary(Op::Lt, pc, Expr::constant(static_cast<std::int32_t>(range.last)))}));
+          }
+        }
+      }
       Expr someoneWaits = ir::disjunction(std::move(waiting));
       L trigger = L::of(ir::conjunction({noLeader(b), someoneWaits}));
       L answer = L::of(Expr::binary(Op::Or, lnot(noLeader(b)), lnot(someoneWaits)));

@@ -58,6 +58,7 @@ class Translator {
   void knowledgeRules();
   void groupServiceRules(Index robot, std::size_t planIndex, std::size_t at);
   void blockExitRules(Index robot, std::size_t planIndex, std::size_t at);
+  [[nodiscard]] Expr groupStarted(Index robot, std::size_t planIndex, std::size_t at) const;
   [[nodiscard]] Expr inService(Index robot, const std::string& service) const;
   void eventRules();
   void messageRules();

@@ -195,8 +195,10 @@ int runCheck(const CheckOptions& options) {
       } else if (p.verdict == checker::Verdict::Unknown && liveSkipped.empty()) {
         std::cout << "  (no violation found in the part explored; the search was not complete)";
       } else if (p.counterexample) {
-        std::cout << "  (lasso of " << p.counterexample->steps.size() << " steps below, loop from step "
-                  << (p.counterexample->loopStart + 1) << ")";
+        const checker::Trace& t = *p.counterexample;
+        std::cout << "  (lasso of " << t.steps.size() << (t.steps.size() == 1 ? " step" : " steps") << " below, ";
+        if (t.loopStart >= t.steps.size()) std::cout << "then it stays for ever)";
+        else std::cout << "loop from step " << (t.loopStart + 1) << ")";
       }
       std::cout << "\n";
     }

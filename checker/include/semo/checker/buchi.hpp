@@ -10,14 +10,16 @@
 namespace semo::checker {
 
 struct BuchiState {
-  // The state of the model read on entering this automaton state must satisfy every literal.
-  std::vector<ir::Expr> label;
+  // The state of the model read on entering this automaton state must satisfy the atoms of
+  // `mustHold` and none of `mustFail` (bit k: Buchi::atoms[k]).
+  std::uint64_t mustHold = 0, mustFail = 0;
   std::vector<std::uint32_t> successors;
   bool initial = false;
   std::uint64_t acceptance = 0;  // bit k: member of acceptance set k
 };
 
 struct Buchi {
+  std::vector<ir::Expr> atoms;  // the state formulas the labels speak of (at most 64)
   std::vector<BuchiState> states;
   std::size_t acceptanceSets = 0;  // a run is accepted when it visits every set infinitely often
   [[nodiscard]] std::uint64_t allSets() const {
@@ -25,7 +27,8 @@ struct Buchi {
   }
 };
 
-// Throws std::length_error when the formula has more than 64 until/eventually subformulas.
+// Throws std::length_error when the formula has more than 64 until/eventually subformulas or more
+// than 64 atoms.
 Buchi buildBuchi(const ir::Ltl& formula);
 
 }  // namespace semo::checker
