@@ -35,6 +35,9 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
   }
   std::size_t open = result.properties.size();  // properties not yet violated
 
+  Symmetry symmetry = limits.symmetry ? Symmetry::find(model) : Symmetry();
+  result.symmetry = symmetry.describe(model);
+  const Symmetry* sym = symmetry.empty() ? nullptr : &symmetry;
   StateStore store(layout.words());
   result.bytesPerState = store.bytesPerState();
   std::vector<Value> values = cm.initialValues(), next(values.size()), scratch;
@@ -45,7 +48,7 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
     for (std::size_t p = 0; p < cm.invariants().size(); ++p) {
       if (result.properties[p].verdict == Verdict::Violated || cm.invariants()[p].eval(v) != 0) continue;
       result.properties[p].verdict = Verdict::Violated;
-      Trace t = traceTo(cm, store, index);
+      Trace t = traceTo(cm, store, index, sym);
       t.property = result.properties[p].name;
       t.kind = "invariant";
       result.properties[p].counterexample = std::move(t);
@@ -61,7 +64,7 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
     if (deadlockIndex == SIZE_MAX || result.properties[deadlockIndex].verdict == Verdict::Violated) return;
     if (validEnd->eval(v) != 0) return;
     result.properties[deadlockIndex].verdict = Verdict::Violated;
-    Trace t = traceTo(cm, store, index);
+    Trace t = traceTo(cm, store, index, sym);
     t.property = "deadlock_freedom";
     t.kind = "deadlock";
     result.properties[deadlockIndex].counterexample = std::move(t);
@@ -90,6 +93,7 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
         }
         if (!inRange) return Frontier{true, true};
         for (std::size_t a = 0; a < branch.assignments.size(); ++a) next[branch.assignments[a].var] = scratch[a];
+        if (sym != nullptr) sym->canonicalize(next.data());
         layout.pack(next.data(), packed.data());
         if (!store.contains(packed.data())) return Frontier{true, true};
       }
@@ -153,7 +157,7 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
         }
         if (outOfRange) {
           // The model is wrong, not the mission: say where, with the path that gets there.
-          Trace t = traceTo(cm, store, i);
+          Trace t = traceTo(cm, store, i, sym);
           std::vector<Change> changes;
           for (std::size_t a = 0; a < branch.assignments.size(); ++a) {
             ir::VarId var = branch.assignments[a].var;
@@ -166,6 +170,7 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
           stopped = true;
           break;
         }
+        if (sym != nullptr) sym->canonicalize(next.data());
         layout.pack(next.data(), packed.data());
         auto [index, added] = store.insert(packed.data(), static_cast<std::uint32_t>(i),
                                            static_cast<std::uint32_t>(r << 8 | (b & 0xffu)));

@@ -6,7 +6,10 @@
 #include <cstdint>
 #include <vector>
 
+#include <stdexcept>
+
 #include "semo/checker/compiled_model.hpp"
+#include "semo/checker/symmetry.hpp"
 #include "semo/checker/trace.hpp"
 
 namespace semo::checker::detail {
@@ -84,18 +87,44 @@ class StateStore {
   std::vector<std::uint32_t> via_;  // rule << 8 | branch
 };
 
-inline Trace traceTo(const CompiledModel& cm, const StateStore& store, std::size_t target) {
+// The path from the initial state to `target`, as a trace of real steps. With symmetry the store
+// holds one state per orbit, and the rule that led to a stored state led from the stored parent:
+// the concrete run is replayed, taking at each step a rule whose successor has the stored state
+// as its representative.
+inline Trace traceTo(const CompiledModel& cm, const StateStore& store, std::size_t target, const Symmetry* symmetry = nullptr) {
   std::vector<std::size_t> path;
   for (std::size_t i = target; i != kNoParent; i = store.parent(i)) path.push_back(i);
   std::reverse(path.begin(), path.end());
   const StateLayout& layout = cm.layout();
-  std::vector<Value> before(layout.variables()), after(layout.variables());
+  std::vector<Value> before(layout.variables()), after(layout.variables()), stored(layout.variables()), canonical(layout.variables());
+  std::vector<std::uint32_t> candidates;
   Trace trace;
   layout.unpack(store.state(path.front()), before.data());
   trace.initial = before;
   for (std::size_t k = 1; k < path.size(); ++k) {
-    layout.unpack(store.state(path[k]), after.data());
-    Step step{store.via(path[k]) >> 8, store.via(path[k]) & 0xffu, {}};
+    layout.unpack(store.state(path[k]), stored.data());
+    std::uint32_t via = store.via(path[k]);
+    if (symmetry == nullptr || symmetry->empty()) {
+      after = stored;
+    } else {
+      bool found = false;
+      cm.candidateRules(before.data(), candidates);
+      for (std::size_t c = 0; c < candidates.size() && !found; ++c) {
+        const CompiledRule& rule = cm.rules()[candidates[c]];
+        if (rule.guard.eval(before.data()) == 0) continue;
+        for (std::size_t b = 0; b < rule.branches.size() && !found; ++b) {
+          cm.step(rule.branches[b], before.data(), after.data());
+          canonical = after;
+          symmetry->canonicalize(canonical.data());
+          if (canonical == stored) {
+            found = true;
+            via = candidates[c] << 8 | static_cast<std::uint32_t>(b);
+          }
+        }
+      }
+      if (!found) throw std::logic_error("symmetry: a stored step has no concrete counterpart");
+    }
+    Step step{via >> 8, via & 0xffu, {}};
     for (ir::VarId v = 0; v < after.size(); ++v) {
       if (before[v] != after[v]) step.changes.push_back({v, before[v], after[v]});
     }

@@ -1,6 +1,6 @@
 # Runs semo-verify once in an empty working folder and checks its exit code, its output, and that it
-# wrote no file. Variables: EXE, ARGS ("|"-separated), EXPECT_EXIT, STDOUT_MATCH, STDERR_MATCH,
-# STDERR_NOT_MATCH, WORKDIR.
+# wrote no file. Variables: EXE, ARGS ("|"-separated), EXPECT_EXIT, STDOUT_MATCH, STDOUT_NOT_MATCH,
+# STDERR_MATCH, STDERR_NOT_MATCH, WORKDIR.
 string(REPLACE "|" ";" args "${ARGS}")
 file(REMOVE_RECURSE "${WORKDIR}")
 file(MAKE_DIRECTORY "${WORKDIR}")
@@ -13,6 +13,9 @@ if(NOT code STREQUAL "${EXPECT_EXIT}")
 endif()
 if(DEFINED STDOUT_MATCH AND NOT out MATCHES "${STDOUT_MATCH}")
   message(FATAL_ERROR "stdout does not match: ${STDOUT_MATCH}")
+endif()
+if(DEFINED STDOUT_NOT_MATCH AND out MATCHES "${STDOUT_NOT_MATCH}")
+  message(FATAL_ERROR "stdout must not match: ${STDOUT_NOT_MATCH}")
 endif()
 if(DEFINED STDERR_MATCH AND NOT err MATCHES "${STDERR_MATCH}")
   message(FATAL_ERROR "stderr does not match: ${STDERR_MATCH}")

@@ -4,6 +4,7 @@
 
 #include "semo/checker/explicit_search.hpp"
 #include "semo/checker/promela_export.hpp"
+#include "semo/checker/symmetry.hpp"
 #include "semo/checker/trace.hpp"
 #include "semo/semantics/ir_text.hpp"
 
@@ -420,6 +421,59 @@ valid_end : a == b;
   EXPECT_NE(bfs.find("assert(prop_small); prop_small = 0"), std::string::npos) << bfs;
   EXPECT_NE(bfs.find("assert(prop_deadlock_freedom); prop_deadlock_freedom = 0"), std::string::npos) << bfs;
   EXPECT_NE(bfs.find("semo_old0 = 0"), std::string::npos) << bfs;
+}
+
+// Two robots that each count to 2, and a shared counter of how many are done.
+constexpr const char* kTwins = R"(semo-ir 1;
+robots a b;
+var a.c : 0..2 = 0 @robot(a);
+var b.c : 0..2 = 0 @robot(b);
+var done : 0..2 = 0;
+rule a.up @robot(a) : a.c < 2 -> a.c' = a.c + 1, done' = (a.c == 1 ? done + 1 : done);
+rule b.up @robot(b) : b.c < 2 -> b.c' = b.c + 1, done' = (b.c == 1 ? done + 1 : done);
+invariant counted : done == (a.c == 2 ? 1 : 0) + (b.c == 2 ? 1 : 0);
+invariant not_both_done : done < 2;
+)";
+
+TEST(Symmetry, InterchangeableRobotsAreFoundAndCountedOncePerOrbit) {
+  ir::Model m = parse(kTwins);
+  Symmetry sym = Symmetry::find(m);
+  ASSERT_FALSE(sym.empty());
+  EXPECT_EQ(sym.describe(m), (std::vector<std::string>{"a b (2! = 2 orderings)"}));
+  SearchLimits with, without;
+  without.symmetry = false;
+  SearchResult full = checkSafety(m, without), reduced = checkSafety(m, with);
+  EXPECT_EQ(full.states, 9u) << "(a.c, b.c) in 0..2 x 0..2";
+  EXPECT_EQ(reduced.states, 6u) << "unordered pairs: 3 * 4 / 2";
+  // The verdicts agree, and the reduced counterexample is a real run of the model.
+  ASSERT_EQ(reduced.properties.size(), 2u);
+  for (std::size_t p = 0; p < 2; ++p) EXPECT_EQ(reduced.properties[p].verdict, full.properties[p].verdict);
+  const PropertyResult& both = property(reduced, "not_both_done");
+  ASSERT_TRUE(both.counterexample.has_value());
+  EXPECT_EQ(both.counterexample->steps.size(), 4u);
+  EXPECT_EQ(finalState(*both.counterexample), (std::vector<std::int32_t>{2, 2, 2}));
+}
+
+TEST(Symmetry, APropertyNamingOneRobotBreaksItsSymmetry) {
+  // The check is syntactic (up to the order of commutative operands), hence conservative:
+  ir::Model m = parse(std::string(kTwins) + "invariant either : a.c <= b.c || b.c <= a.c;\n");
+  EXPECT_FALSE(Symmetry::find(m).empty()) << "`either` maps to itself";
+  ir::Model asymmetric = parse(std::string(kTwins) + "invariant a_small : a.c < 3;\n");
+  EXPECT_TRUE(Symmetry::find(asymmetric).empty());
+  // A rule that treats the two differently breaks it as well.
+  std::string text = kTwins;
+  text.replace(text.find("rule b.up @robot(b) : b.c < 2"), 29, "rule b.up @robot(b) : b.c < 1");
+  EXPECT_TRUE(Symmetry::find(parse(text)).empty());
+}
+
+TEST(Symmetry, CanonicalFormSortsRobotsByTheirValues) {
+  ir::Model m = parse(kTwins);
+  Symmetry sym = Symmetry::find(m);
+  std::vector<Value> x{2, 1, 1}, y{1, 2, 1};
+  sym.canonicalize(x.data());
+  sym.canonicalize(y.data());
+  EXPECT_EQ(x, y);
+  EXPECT_EQ(x, (std::vector<Value>{1, 2, 1}));
 }
 
 }  // namespace

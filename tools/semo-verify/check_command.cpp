@@ -94,6 +94,7 @@ int runCheck(const CheckOptions& options) {
   limits.maxStates = options.maxStates;
   limits.maxMemoryBytes = options.maxMemoryMiB << 20;
   limits.maxDepth = options.maxDepth;
+  limits.symmetry = options.symmetry;
   if (!options.json) {
     // On a terminal the line is rewritten in place; in a log, one line every ten seconds.
     bool terminal = isatty(STDERR_FILENO) != 0;
@@ -146,7 +147,8 @@ int runCheck(const CheckOptions& options) {
                            {"states", r.states},             {"transitions", r.transitions},
                            {"depth", r.depth},               {"complete", r.complete},
                            {"seconds", r.seconds},           {"bytesPerState", r.bytesPerState},
-                           {"properties", props},            {"exitCode", code}};
+                           {"properties", props},            {"exitCode", code},
+                           {"symmetry", r.symmetry}};
     if (!r.limitReached.empty()) root["limit"] = r.limitReached;
     if (r.depthBounded) root["boundedDepth"] = r.depth;
     if (r.rangeError) root["modelError"] = nlohmann::json::parse(checker::traceToJson(*model, *r.rangeError));
@@ -162,12 +164,14 @@ int runCheck(const CheckOptions& options) {
   std::cout << "model:       " << options.model.input << " (" << model->variables.size() << " variables, "
             << model->rules.size() << " rules)\n";
   std::cout << "assumptions: " << assumptionsLine(*model) << "\n";
+  for (const std::string& c : r.symmetry) std::cout << "symmetry:    interchangeable " << c << "\n";
   std::cout << "explored:    " << r.states << " states, " << r.transitions << " transitions, depth " << r.depth << " ("
             << (r.complete ? "complete" : "PARTIAL: " + r.limitReached) << "), " << r.seconds << " s\n";
   for (const checker::PropertyResult& p : r.properties) {
     std::cout << "  " << checker::verdictName(p.verdict) << "  " << p.name;
     if (p.verdict == checker::Verdict::Proven) {
-      std::cout << "  (all " << r.states << " reachable states, under the assumptions above)";
+      std::cout << "  (all " << r.states << " reachable states" << (r.symmetry.empty() ? "" : " up to symmetry")
+                << ", under the assumptions above)";
     } else if (p.verdict == checker::Verdict::Unknown && r.depthBounded) {
       std::cout << "  (holds on every path of up to " << r.depth << " steps, " << r.states
                 << " states; longer paths not explored)";

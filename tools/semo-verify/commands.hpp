@@ -34,6 +34,7 @@ struct CheckOptions {
   ModelInput model;
   std::uint64_t maxStates = 50'000'000;
   std::uint32_t maxDepth = UINT32_MAX;
+  bool symmetry = true;
   std::uint64_t maxMemoryMiB = 8192;
   bool json = false;
 };

@@ -47,6 +47,8 @@ int main(int argc, char** argv) {
   checkCmd->add_option("--max-memory", check.maxMemoryMiB, "Stop when the state store reaches this many MiB (exit 3)");
   checkCmd->add_option("--max-depth", check.maxDepth,
                        "Explore only paths of at most this many steps (bounded search: exit 3 unless nothing lies beyond)");
+  checkCmd->add_flag_callback("--no-symmetry", [&check] { check.symmetry = false; },
+                              "Store every state, not one per ordering of interchangeable robots (safety search)");
   checkCmd->add_flag("--json", check.json, "Print the verdicts and counterexamples as JSON (specs/trace.md)");
 
   semo::cli::ExportOptions exportOptions;

@@ -26,6 +26,9 @@ struct SearchLimits {
   // "proven" unless no path is longer). States at the bound are checked against the invariants but
   // not expanded, as in SPIN's breadth-first search with -m.
   std::uint32_t maxDepth = UINT32_MAX;
+  // Store one state per orbit of interchangeable robots (checker/symmetry.hpp); the verdicts are
+  // the same, the counts are of orbits.
+  bool symmetry = true;
   // Called about once a second during a long search (never for searches under a second).
   std::function<void(const Progress&)> onProgress;
 };
@@ -52,6 +55,7 @@ struct SearchResult {
   std::uint64_t peakBytes = 0;
   double seconds = 0;
   std::optional<Trace> rangeError;  // an update leaving a variable's range: a modelling error
+  std::vector<std::string> symmetry;  // the classes of interchangeable robots used, if any
 };
 
 SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits);
