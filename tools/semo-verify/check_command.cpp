@@ -113,7 +113,8 @@ int runCheck(const CheckOptions& options) {
   checker::LivenessResult live;
   std::string liveSkipped;
   if (!model->properties.empty()) {
-    if (r.rangeError) liveSkipped = "not checked: the model has an error";
+    if (options.safetyOnly) liveSkipped = "not checked: --safety-only";
+    else if (r.rangeError) liveSkipped = "not checked: the model has an error";
     else if (options.maxDepth != UINT32_MAX) liveSkipped = "not checked: --max-depth bounds safety only";
     if (liveSkipped.empty()) {
       live = checker::checkLiveness(*model, limits);

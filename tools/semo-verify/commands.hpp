@@ -35,6 +35,7 @@ struct CheckOptions {
   std::uint64_t maxStates = 50'000'000;
   std::uint32_t maxDepth = UINT32_MAX;
   bool symmetry = true;
+  bool safetyOnly = false;
   std::uint64_t maxMemoryMiB = 8192;
   bool json = false;
 };
