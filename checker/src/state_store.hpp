@@ -27,62 +27,77 @@ class StateStore {
   [[nodiscard]] std::uint32_t parent(std::size_t i) const { return parent_[i]; }
   [[nodiscard]] std::uint32_t via(std::size_t i) const { return via_[i]; }
   [[nodiscard]] std::uint64_t bytes() const {
-    return data_.capacity() * 8 + table_.capacity() * 4 + parent_.capacity() * 4 + via_.capacity() * 4;
+    return data_.capacity() * 8 + table_.capacity() * 8 + parent_.capacity() * 4 + via_.capacity() * 4;
   }
-  [[nodiscard]] std::uint64_t bytesPerState() const { return words_ * 8 + 4 + 4 + 8; }  // data, parent, via, table
+  // data, parent, via, and the hash table (8-byte slots, at most half full)
+  [[nodiscard]] std::uint64_t bytesPerState() const { return words_ * 8 + 4 + 4 + 16; }
 
   [[nodiscard]] bool contains(const std::uint64_t* s) const {
+    std::uint64_t h = hash(s);
     std::size_t mask = table_.size() - 1;
-    for (std::size_t slot = hash(s) & mask;; slot = (slot + 1) & mask) {
-      std::uint32_t entry = table_[slot];
+    for (std::size_t slot = h & mask;; slot = (slot + 1) & mask) {
+      std::uint64_t entry = table_[slot];
       if (entry == 0) return false;
-      if (std::equal(s, s + words_, state(entry - 1))) return true;
+      if ((entry >> 32) == (h >> 32) && same(s, state((entry & 0xffffffffu) - 1))) return true;
     }
   }
 
   // Returns the state's index and whether it is new.
   std::pair<std::uint32_t, bool> insert(const std::uint64_t* s, std::uint32_t parent, std::uint32_t via) {
     if ((parent_.size() + 1) * 2 > table_.size()) grow();
+    std::uint64_t h = hash(s);
     std::size_t mask = table_.size() - 1;
-    for (std::size_t slot = hash(s) & mask;; slot = (slot + 1) & mask) {
-      std::uint32_t entry = table_[slot];
+    for (std::size_t slot = h & mask;; slot = (slot + 1) & mask) {
+      std::uint64_t entry = table_[slot];
       if (entry == 0) {
         auto index = static_cast<std::uint32_t>(parent_.size());
-        table_[slot] = index + 1;
+        table_[slot] = (h & ~0xffffffffull) | (static_cast<std::uint64_t>(index) + 1);
         data_.insert(data_.end(), s, s + words_);
         parent_.push_back(parent);
         via_.push_back(via);
         return {index, true};
       }
-      if (std::equal(s, s + words_, state(entry - 1))) return {entry - 1, false};
+      // The slot keeps the upper half of the hash: most other states are told apart without
+      // reading their data (a cache miss).
+      if ((entry >> 32) == (h >> 32) && same(s, state((entry & 0xffffffffu) - 1))) {
+        return {static_cast<std::uint32_t>((entry & 0xffffffffu) - 1), false};
+      }
     }
   }
 
  private:
-  [[nodiscard]] std::size_t hash(const std::uint64_t* s) const {
+  [[nodiscard]] bool same(const std::uint64_t* a, const std::uint64_t* b) const {
+    for (std::size_t i = 0; i < words_; ++i) {
+      if (a[i] != b[i]) return false;
+    }
+    return true;
+  }
+
+  [[nodiscard]] std::uint64_t hash(const std::uint64_t* s) const {
     std::uint64_t h = 0x9e3779b97f4a7c15ull;
     for (std::size_t i = 0; i < words_; ++i) {
       h ^= s[i] + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
       h *= 0xff51afd7ed558ccdull;
       h ^= h >> 33;
     }
-    return static_cast<std::size_t>(h);
+    return h;
   }
 
   void grow() {
-    std::vector<std::uint32_t> bigger(table_.size() * 2, 0);
+    std::vector<std::uint64_t> bigger(table_.size() * 2, 0);
     std::size_t mask = bigger.size() - 1;
     for (std::uint32_t i = 0; i < parent_.size(); ++i) {
-      std::size_t slot = hash(state(i)) & mask;
+      std::uint64_t h = hash(state(i));
+      std::size_t slot = h & mask;
       while (bigger[slot] != 0) slot = (slot + 1) & mask;
-      bigger[slot] = i + 1;
+      bigger[slot] = (h & ~0xffffffffull) | (static_cast<std::uint64_t>(i) + 1);
     }
     table_.swap(bigger);
   }
 
   std::size_t words_;
   std::vector<std::uint64_t> data_;
-  std::vector<std::uint32_t> table_;
+  std::vector<std::uint64_t> table_;  // (upper half of the hash) << 32 | (index + 1); 0: empty
   std::vector<std::uint32_t> parent_;
   std::vector<std::uint32_t> via_;  // rule << 8 | branch
 };
