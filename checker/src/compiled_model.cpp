@@ -22,6 +22,8 @@ void Program::compile(const ir::Expr& e) {
 }
 
 Value Program::eval(const Value* vars) const {
+  // Most updates are a constant (a program counter) or a copy of a variable.
+  if (code_.size() == 1) return code_[0].op == ir::Op::Const ? code_[0].operand : vars[code_[0].operand];
   constexpr std::size_t kInline = 64;
   Value inlineStack[kInline];
   std::vector<Value> heap;
@@ -68,6 +70,33 @@ Value Program::eval(const Value* vars) const {
     }
   }
   return stack[0];
+}
+
+Condition::Condition(const ir::Expr& e) { add(e); }
+
+void Condition::add(const ir::Expr& e) {
+  using ir::Op;
+  if (e.op == Op::And) {
+    add(e.args[0]);
+    add(e.args[1]);
+    return;
+  }
+  if (e.op == Op::Const) {
+    if (e.value == 0) rest_.emplace_back(e);  // never holds
+    return;
+  }
+  if (e.op == Op::Var) return tests_.push_back({static_cast<ir::VarId>(e.value), Op::Ne, 0});
+  if (e.op == Op::Not && e.args[0].op == Op::Var) return tests_.push_back({static_cast<ir::VarId>(e.args[0].value), Op::Eq, 0});
+  bool comparison = e.op == Op::Eq || e.op == Op::Ne || e.op == Op::Lt || e.op == Op::Le || e.op == Op::Gt || e.op == Op::Ge;
+  if (comparison && e.args[0].op == Op::Var && e.args[1].op == Op::Const) {
+    return tests_.push_back({static_cast<ir::VarId>(e.args[0].value), e.op, e.args[1].value});
+  }
+  if (comparison && e.args[1].op == Op::Var && e.args[0].op == Op::Const) {
+    // c < v  is  v > c, and so on.
+    Op mirrored = e.op == Op::Lt ? Op::Gt : e.op == Op::Le ? Op::Ge : e.op == Op::Gt ? Op::Lt : e.op == Op::Ge ? Op::Le : e.op;
+    return tests_.push_back({static_cast<ir::VarId>(e.args[1].value), mirrored, e.args[0].value});
+  }
+  rest_.emplace_back(e);
 }
 
 StateLayout::StateLayout(const ir::Model& model) {
@@ -136,7 +165,7 @@ CompiledModel::CompiledModel(const ir::Model& model) : model_(&model), layout_(m
     triggers_[static_cast<std::size_t>(triggerOf[eq->first])].rulesByValue[static_cast<std::size_t>(eq->second - v->min)].push_back(r);
   }
   for (const ir::Rule& r : model.rules) {
-    CompiledRule c{Program(r.guard), {}};
+    CompiledRule c{Condition(r.guard), {}};
     for (const ir::Branch& b : r.branches) {
       CompiledBranch cb;
       for (const ir::Assignment& a : b.assignments) cb.assignments.push_back({a.var, Program(a.value)});

@@ -43,6 +43,9 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
   std::vector<Value> values = cm.initialValues(), next(values.size()), scratch;
   std::vector<std::uint64_t> packed(layout.words());
   std::vector<std::uint32_t> candidates;
+  // The successors of the state being expanded, packed, and the rules that make them.
+  std::vector<std::uint64_t> batchStates, batchHash;
+  std::vector<std::uint32_t> batchVia;
 
   auto checkInvariants = [&](const Value* v, std::size_t index) {
     for (std::size_t p = 0; p < cm.invariants().size(); ++p) {
@@ -148,8 +151,6 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
         const CompiledBranch& branch = rule.branches[b];
         scratch.resize(branch.assignments.size());
         for (std::size_t a = 0; a < branch.assignments.size(); ++a) scratch[a] = branch.assignments[a].value.eval(values.data());
-        next = values;
-        for (std::size_t a = 0; a < branch.assignments.size(); ++a) next[branch.assignments[a].var] = scratch[a];
         ++result.transitions;
         bool outOfRange = false;
         for (std::size_t a = 0; a < branch.assignments.size(); ++a) {
@@ -170,13 +171,36 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
           stopped = true;
           break;
         }
-        if (sym != nullptr) sym->canonicalize(next.data());
-        layout.pack(next.data(), packed.data());
-        auto [index, added] = store.insert(packed.data(), static_cast<std::uint32_t>(i),
-                                           static_cast<std::uint32_t>(r << 8 | (b & 0xffu)));
-        if (added) checkInvariants(next.data(), index);
+        if (sym != nullptr) {
+          next = values;
+          for (std::size_t a = 0; a < branch.assignments.size(); ++a) next[branch.assignments[a].var] = scratch[a];
+          sym->canonicalize(next.data());
+          layout.pack(next.data(), packed.data());
+        } else {
+          // Only the assigned fields differ from the state being expanded.
+          std::copy_n(store.state(i), packed.size(), packed.begin());
+          for (std::size_t a = 0; a < branch.assignments.size(); ++a) layout.set(packed.data(), branch.assignments[a].var, scratch[a]);
+        }
+        batchStates.insert(batchStates.end(), packed.begin(), packed.end());
+        batchVia.push_back(static_cast<std::uint32_t>(r << 8 | (b & 0xffu)));
       }
     }
+    // Insert the successors: hashes and prefetches first, so that the table's cache misses overlap.
+    const std::size_t count = batchVia.size(), words = layout.words();
+    batchHash.resize(count);
+    for (std::size_t k = 0; k < count; ++k) {
+      batchHash[k] = store.hashOf(&batchStates[k * words]);
+      store.prefetch(batchHash[k]);
+    }
+    for (std::size_t k = 0; k < count; ++k) {
+      auto [index, added] = store.insert(&batchStates[k * words], batchHash[k], static_cast<std::uint32_t>(i), batchVia[k]);
+      if (added && !cm.invariants().empty()) {
+        layout.unpack(&batchStates[k * words], next.data());
+        checkInvariants(next.data(), index);
+      }
+    }
+    batchStates.clear();
+    batchVia.clear();
     if (!enabled) judgeDeadlock(values.data(), i);
     result.peakBytes = std::max(result.peakBytes, store.bytes());
     if (limits.onProgress && (i & 0x3fffu) == 0) {

@@ -42,10 +42,17 @@ class StateStore {
     }
   }
 
+  [[nodiscard]] std::uint64_t hashOf(const std::uint64_t* s) const { return hash(s); }
+  // Starts loading the slot a state with hash h probes first: the search hashes all successors of a
+  // state, prefetches, then inserts them, so that the cache misses overlap.
+  void prefetch(std::uint64_t h) const { __builtin_prefetch(&table_[h & (table_.size() - 1)]); }
+
   // Returns the state's index and whether it is new.
   std::pair<std::uint32_t, bool> insert(const std::uint64_t* s, std::uint32_t parent, std::uint32_t via) {
+    return insert(s, hash(s), parent, via);
+  }
+  std::pair<std::uint32_t, bool> insert(const std::uint64_t* s, std::uint64_t h, std::uint32_t parent, std::uint32_t via) {
     if ((parent_.size() + 1) * 2 > table_.size()) grow();
-    std::uint64_t h = hash(s);
     std::size_t mask = table_.size() - 1;
     for (std::size_t slot = h & mask;; slot = (slot + 1) & mask) {
       std::uint64_t entry = table_[slot];

@@ -28,6 +28,45 @@ class Program {
   std::size_t depth_ = 0;
 };
 
+// A guard: the conjuncts of a conjunction tested in turn, stopping at the first that fails; the
+// comparisons of a variable with a constant (most conjuncts: program counters, `alive`) first,
+// without the stack machine.
+class Condition {
+ public:
+  Condition() = default;
+  explicit Condition(const ir::Expr& e);
+  [[nodiscard]] bool holds(const Value* vars) const {
+    for (const Test& t : tests_) {
+      if (!t.holds(vars[t.var])) return false;
+    }
+    for (const Program& p : rest_) {
+      if (p.eval(vars) == 0) return false;
+    }
+    return true;
+  }
+  [[nodiscard]] Value eval(const Value* vars) const { return holds(vars) ? 1 : 0; }
+
+ private:
+  struct Test {
+    ir::VarId var;
+    ir::Op op;  // Eq, Ne, Lt, Le, Gt, Ge against `constant`
+    Value constant;
+    [[nodiscard]] bool holds(Value v) const {
+      switch (op) {
+        case ir::Op::Eq: return v == constant;
+        case ir::Op::Ne: return v != constant;
+        case ir::Op::Lt: return v < constant;
+        case ir::Op::Le: return v <= constant;
+        case ir::Op::Gt: return v > constant;
+        default: return v >= constant;
+      }
+    }
+  };
+  void add(const ir::Expr& conjunct);
+  std::vector<Test> tests_;
+  std::vector<Program> rest_;
+};
+
 class StateLayout {
  public:
   explicit StateLayout(const ir::Model& model);
@@ -35,6 +74,12 @@ class StateLayout {
   [[nodiscard]] std::size_t variables() const { return fields_.size(); }
   [[nodiscard]] std::size_t bits() const { return bits_; }
   void pack(const Value* values, std::uint64_t* out) const;
+  // Overwrites one variable's field in a packed state (the value must be in the range).
+  void set(std::uint64_t* packed, ir::VarId var, Value value) const {
+    const Field& f = fields_[var];
+    std::uint64_t mask = (f.width == 64 ? ~0ull : ((1ull << f.width) - 1)) << f.shift;
+    packed[f.word] = (packed[f.word] & ~mask) | ((static_cast<std::uint64_t>(static_cast<std::int64_t>(value) - f.min) << f.shift) & mask);
+  }
   void unpack(const std::uint64_t* in, Value* values) const;
 
  private:
@@ -57,7 +102,7 @@ struct CompiledBranch {
 };
 
 struct CompiledRule {
-  Program guard;
+  Condition guard;
   std::vector<CompiledBranch> branches;
 };
 
