@@ -5,6 +5,7 @@
 
 #include "semo/checker/compiled_model.hpp"
 #include "state_store.hpp"
+#include "successors.hpp"
 
 namespace semo::checker {
 
@@ -43,9 +44,8 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
   std::vector<Value> values = cm.initialValues(), next(values.size()), scratch;
   std::vector<std::uint64_t> packed(layout.words());
   std::vector<std::uint32_t> candidates;
-  // The successors of the state being expanded, packed, and the rules that make them.
-  std::vector<std::uint64_t> batchStates, batchHash;
-  std::vector<std::uint32_t> batchVia;
+  detail::SuccessorGenerator generator(cm, sym, limits.threads);
+  constexpr std::size_t kBlockPerThread = 4096;
 
   auto checkInvariants = [&](const Value* v, std::size_t index) {
     for (std::size_t p = 0; p < cm.invariants().size(); ++p) {
@@ -139,68 +139,35 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
       exhausted = !cutOff;
       break;
     }
-    layout.unpack(store.state(i), values.data());
-    bool enabled = false;
-    cm.candidateRules(values.data(), candidates);
-    for (std::size_t k = 0; k < candidates.size() && !stopped; ++k) {
-      std::size_t r = candidates[k];
-      const CompiledRule& rule = cm.rules()[r];
-      if (rule.guard.eval(values.data()) == 0) continue;
-      enabled = true;
-      for (std::size_t b = 0; b < rule.branches.size(); ++b) {
-        const CompiledBranch& branch = rule.branches[b];
-        scratch.resize(branch.assignments.size());
-        for (std::size_t a = 0; a < branch.assignments.size(); ++a) scratch[a] = branch.assignments[a].value.eval(values.data());
-        ++result.transitions;
-        bool outOfRange = false;
-        for (std::size_t a = 0; a < branch.assignments.size(); ++a) {
-          outOfRange = outOfRange || !cm.inRange(branch.assignments[a].var, scratch[a]);
-        }
-        if (outOfRange) {
-          // The model is wrong, not the mission: say where, with the path that gets there.
-          Trace t = traceTo(cm, store, i, sym);
-          std::vector<Change> changes;
-          for (std::size_t a = 0; a < branch.assignments.size(); ++a) {
-            ir::VarId var = branch.assignments[a].var;
-            if (values[var] != scratch[a]) changes.push_back({var, values[var], scratch[a]});
-          }
-          t.steps.push_back({r, b, std::move(changes)});
-          t.kind = "range";
-          result.rangeError = std::move(t);
-          result.limitReached = "an update left a variable's declared range";
-          stopped = true;
-          break;
-        }
-        if (sym != nullptr) {
-          next = values;
-          for (std::size_t a = 0; a < branch.assignments.size(); ++a) next[branch.assignments[a].var] = scratch[a];
-          sym->canonicalize(next.data());
-          layout.pack(next.data(), packed.data());
-        } else {
-          // Only the assigned fields differ from the state being expanded.
-          std::copy_n(store.state(i), packed.size(), packed.begin());
-          for (std::size_t a = 0; a < branch.assignments.size(); ++a) layout.set(packed.data(), branch.assignments[a].var, scratch[a]);
-        }
-        batchStates.insert(batchStates.end(), packed.begin(), packed.end());
-        batchVia.push_back(static_cast<std::uint32_t>(r << 8 | (b & 0xffu)));
-      }
+    if (i >= generator.expandedEnd()) {
+      // Expand the next block of stored states ahead, on every thread.
+      generator.expand(store, i, std::min(store.size(), i + kBlockPerThread * generator.threads()));
     }
-    // Insert the successors: hashes and prefetches first, so that the table's cache misses overlap.
-    const std::size_t count = batchVia.size(), words = layout.words();
-    batchHash.resize(count);
-    for (std::size_t k = 0; k < count; ++k) {
-      batchHash[k] = store.hashOf(&batchStates[k * words]);
-      store.prefetch(batchHash[k]);
-    }
-    for (std::size_t k = 0; k < count; ++k) {
-      auto [index, added] = store.insert(&batchStates[k * words], batchHash[k], static_cast<std::uint32_t>(i), batchVia[k]);
+    const detail::Expansion& e = generator.of(i);
+    const std::size_t local = i - e.firstState, words = layout.words();
+    const std::uint32_t from = e.begin[local], to = e.begin[local + 1];
+    result.transitions += to - from;
+    for (std::uint32_t k = from; k < to && k < from + 8; ++k) store.prefetch(e.hash[k]);
+    for (std::uint32_t k = from; k < to; ++k) {
+      if (k + 8 < to) store.prefetch(e.hash[k + 8]);
+      auto [index, added] = store.insert(&e.packed[k * words], e.hash[k], static_cast<std::uint32_t>(i), e.via[k]);
       if (added && !cm.invariants().empty()) {
-        layout.unpack(&batchStates[k * words], next.data());
+        layout.unpack(&e.packed[k * words], next.data());
         checkInvariants(next.data(), index);
       }
     }
-    batchStates.clear();
-    batchVia.clear();
+    if (e.rangeError && e.rangeError->state == i) {
+      // The model is wrong, not the mission: say where, with the path that gets there.
+      ++result.transitions;
+      Trace t = traceTo(cm, store, i, sym);
+      t.steps.push_back(e.rangeError->step);
+      t.kind = "range";
+      result.rangeError = std::move(t);
+      result.limitReached = "an update left a variable's declared range";
+      stopped = true;
+    }
+    bool enabled = e.enabled[local] != 0;
+    if (!enabled) layout.unpack(store.state(i), values.data());
     if (!enabled) judgeDeadlock(values.data(), i);
     result.peakBytes = std::max(result.peakBytes, store.bytes());
     if (limits.onProgress && (i & 0x3fffu) == 0) {

@@ -2,6 +2,10 @@
 // export's naming and arithmetic (its state counts are cross-checked with SPIN in tests/e2e/spin).
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
 #include "semo/checker/explicit_search.hpp"
 #include "semo/checker/promela_export.hpp"
 #include "semo/checker/symmetry.hpp"
@@ -474,6 +478,38 @@ TEST(Symmetry, CanonicalFormSortsRobotsByTheirValues) {
   sym.canonicalize(y.data());
   EXPECT_EQ(x, y);
   EXPECT_EQ(x, (std::vector<Value>{1, 2, 1}));
+}
+
+TEST(ExplicitSearch, ThreadsChangeNothingButSpeed) {
+  std::size_t models = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(SEMO_SOURCE_DIR "/tests/e2e/ir")) {
+    if (entry.path().extension() != ".ir") continue;
+    std::ifstream in(entry.path());
+    std::stringstream text;
+    text << in.rdbuf();
+    SCOPED_TRACE(entry.path().string());
+    ir::Model m = parse(text.str());
+    for (bool symmetry : {false, true}) {
+      SearchLimits one, three;
+      one.symmetry = three.symmetry = symmetry;
+      one.threads = 1;
+      three.threads = 3;
+      SearchResult a = checkSafety(m, one), b = checkSafety(m, three);
+      EXPECT_EQ(a.states, b.states);
+      EXPECT_EQ(a.transitions, b.transitions);
+      EXPECT_EQ(a.depth, b.depth);
+      EXPECT_EQ(a.complete, b.complete);
+      ASSERT_EQ(a.properties.size(), b.properties.size());
+      for (std::size_t p = 0; p < a.properties.size(); ++p) {
+        EXPECT_EQ(a.properties[p].verdict, b.properties[p].verdict);
+        if (a.properties[p].counterexample && b.properties[p].counterexample) {
+          EXPECT_EQ(ruleNames(m, *a.properties[p].counterexample), ruleNames(m, *b.properties[p].counterexample));
+        }
+      }
+    }
+    ++models;
+  }
+  EXPECT_GE(models, 8u);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <thread>
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
@@ -95,6 +96,7 @@ int runCheck(const CheckOptions& options) {
   limits.maxMemoryBytes = options.maxMemoryMiB << 20;
   limits.maxDepth = options.maxDepth;
   limits.symmetry = options.symmetry;
+  limits.threads = options.threads != 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
   if (!options.json) {
     // On a terminal the line is rewritten in place; in a log, one line every ten seconds.
     bool terminal = isatty(STDERR_FILENO) != 0;

@@ -36,6 +36,7 @@ struct CheckOptions {
   std::uint32_t maxDepth = UINT32_MAX;
   bool symmetry = true;
   bool safetyOnly = false;
+  unsigned threads = 0;  // 0: one per core
   std::uint64_t maxMemoryMiB = 8192;
   bool json = false;
 };

@@ -49,6 +49,8 @@ int main(int argc, char** argv) {
                        "Explore only paths of at most this many steps (bounded search: exit 3 unless nothing lies beyond)");
   checkCmd->add_flag_callback("--no-symmetry", [&check] { check.symmetry = false; },
                               "Store every state, not one per ordering of interchangeable robots (safety search)");
+  checkCmd->add_option("--threads", check.threads, "Threads for the safety search (default: one per core; the results do not depend on it)")
+      ->check(CLI::Range(1u, 256u));
   checkCmd->add_flag("--safety-only", check.safetyOnly, "Check the invariants and deadlock freedom only, not the LTL properties");
   checkCmd->add_flag("--json", check.json, "Print the verdicts and counterexamples as JSON (specs/trace.md)");
 

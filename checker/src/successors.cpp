@@ -1,0 +1,106 @@
+#include "successors.hpp"
+
+#include <algorithm>
+#include <thread>
+
+namespace semo::checker::detail {
+
+SuccessorGenerator::SuccessorGenerator(const CompiledModel& cm, const Symmetry* symmetry, unsigned threads)
+    : cm_(cm), useSymmetry_(symmetry != nullptr), workers_(std::max(1u, threads)) {
+  for (Worker& w : workers_) {
+    w.values.resize(cm.layout().variables());
+    w.next.resize(cm.layout().variables());
+    w.packed.resize(cm.layout().words());
+    if (symmetry != nullptr) w.symmetry = *symmetry;
+  }
+}
+
+void SuccessorGenerator::run(Worker& w, const StateStore& store, Expansion& out) const {
+  const StateLayout& layout = cm_.layout();
+  out.packed.clear();
+  out.hash.clear();
+  out.via.clear();
+  out.begin.clear();
+  out.enabled.clear();
+  out.rangeError.reset();
+  for (std::size_t i = out.firstState; i < out.endState; ++i) {
+    out.begin.push_back(static_cast<std::uint32_t>(out.via.size()));
+    layout.unpack(store.state(i), w.values.data());
+    bool enabled = false;
+    cm_.candidateRules(w.values.data(), w.candidates);
+    for (std::uint32_t r : w.candidates) {
+      const CompiledRule& rule = cm_.rules()[r];
+      if (!rule.guard.holds(w.values.data())) continue;
+      enabled = true;
+      for (std::size_t b = 0; b < rule.branches.size(); ++b) {
+        const CompiledBranch& branch = rule.branches[b];
+        w.scratch.resize(branch.assignments.size());
+        bool inRange = true;
+        for (std::size_t a = 0; a < branch.assignments.size(); ++a) {
+          w.scratch[a] = branch.assignments[a].value.eval(w.values.data());
+          inRange = inRange && cm_.inRange(branch.assignments[a].var, w.scratch[a]);
+        }
+        if (!inRange) {
+          Step step{r, b, {}};
+          for (std::size_t a = 0; a < branch.assignments.size(); ++a) {
+            ir::VarId var = branch.assignments[a].var;
+            if (w.values[var] != w.scratch[a]) step.changes.push_back({var, w.values[var], w.scratch[a]});
+          }
+          out.rangeError = Expansion::RangeError{i, std::move(step)};
+          out.enabled.push_back(1);
+          out.endState = i + 1;  // the search stops here
+          out.begin.push_back(static_cast<std::uint32_t>(out.via.size()));
+          return;
+        }
+        if (useSymmetry_) {
+          w.next = w.values;
+          for (std::size_t a = 0; a < branch.assignments.size(); ++a) w.next[branch.assignments[a].var] = w.scratch[a];
+          w.symmetry.canonicalize(w.next.data());
+          layout.pack(w.next.data(), w.packed.data());
+        } else {
+          // Only the assigned fields differ from the state being expanded.
+          std::copy_n(store.state(i), w.packed.size(), w.packed.begin());
+          for (std::size_t a = 0; a < branch.assignments.size(); ++a) layout.set(w.packed.data(), branch.assignments[a].var, w.scratch[a]);
+        }
+        out.packed.insert(out.packed.end(), w.packed.begin(), w.packed.end());
+        out.hash.push_back(store.hashOf(w.packed.data()));
+        out.via.push_back(r << 8 | static_cast<std::uint32_t>(b));
+      }
+    }
+    out.enabled.push_back(enabled ? 1 : 0);
+  }
+  out.begin.push_back(static_cast<std::uint32_t>(out.via.size()));
+}
+
+void SuccessorGenerator::expand(const StateStore& store, std::size_t first, std::size_t end) {
+  const std::size_t n = end - first, t = std::min<std::size_t>(workers_.size(), std::max<std::size_t>(1, n / 256));
+  parts_.resize(t);
+  for (std::size_t k = 0; k < t; ++k) {
+    parts_[k].firstState = first + n * k / t;
+    parts_[k].endState = first + n * (k + 1) / t;
+  }
+  if (t == 1) {
+    run(workers_[0], store, parts_[0]);
+  } else {
+    std::vector<std::thread> helpers;
+    for (std::size_t k = 1; k < t; ++k) helpers.emplace_back([this, k, &store] { run(workers_[k], store, parts_[k]); });
+    run(workers_[0], store, parts_[0]);
+    for (std::thread& h : helpers) h.join();
+  }
+  // A range error ends the block: the parts after it are dropped.
+  for (std::size_t k = 0; k < parts_.size(); ++k) {
+    if (parts_[k].rangeError) {
+      parts_.resize(k + 1);
+      break;
+    }
+  }
+}
+
+const Expansion& SuccessorGenerator::of(std::size_t i) const {
+  for (const Expansion& e : parts_) {
+    if (i >= e.firstState && i < e.endState) return e;
+  }
+  return parts_.back();
+}
+
+}  // namespace semo::checker::detail
