@@ -11,10 +11,21 @@ Program::Program(const ir::Expr& e) {
 }
 
 void Program::compile(const ir::Expr& e) {
-  // Every operand is evaluated, `?:` too: expressions have no side effects, so a select is exact.
+  using ir::Op;
+  if (e.op == Op::And || e.op == Op::Or || e.op == Op::Implies) {
+    compile(e.args[0]);
+    std::size_t jump = code_.size();
+    code_.push_back({static_cast<std::uint8_t>(e.op == Op::And ? kJumpIfFalse : e.op == Op::Or ? kJumpIfTrue : kJumpIfFalseTrue), 0});
+    --depth_;  // popped when not taken
+    compile(e.args[1]);
+    code_.push_back({kTruth, 0});
+    code_[jump].operand = static_cast<std::int32_t>(code_.size());
+    return;
+  }
+  // The other operators evaluate every operand; `?:` too, which is exact without side effects.
   for (const ir::Expr& a : e.args) compile(a);
-  code_.push_back({e.op, e.value});
-  if (e.op == ir::Op::Const || e.op == ir::Op::Var) {
+  code_.push_back({static_cast<std::uint8_t>(e.op), e.value});
+  if (e.op == Op::Const || e.op == Op::Var) {
     maxStack_ = std::max(maxStack_, ++depth_);
   } else {
     depth_ -= e.args.size() - 1;
@@ -23,7 +34,7 @@ void Program::compile(const ir::Expr& e) {
 
 Value Program::eval(const Value* vars) const {
   // Most updates are a constant (a program counter) or a copy of a variable.
-  if (code_.size() == 1) return code_[0].op == ir::Op::Const ? code_[0].operand : vars[code_[0].operand];
+  if (code_.size() == 1) return code_[0].op == static_cast<std::uint8_t>(ir::Op::Const) ? code_[0].operand : vars[code_[0].operand];
   constexpr std::size_t kInline = 64;
   Value inlineStack[kInline];
   std::vector<Value> heap;
@@ -33,8 +44,26 @@ Value Program::eval(const Value* vars) const {
     stack = heap.data();
   }
   std::size_t sp = 0;
-  for (const Instr& in : code_) {
+  const std::size_t n = code_.size();
+  for (std::size_t pc = 0; pc < n; ++pc) {
+    const Instr& in = code_[pc];
     switch (in.op) {
+      case kJumpIfFalse:
+        if (stack[sp - 1] == 0) pc = static_cast<std::size_t>(in.operand) - 1;
+        else --sp;
+        continue;
+      case kJumpIfTrue:
+        if (stack[sp - 1] != 0) stack[sp - 1] = 1, pc = static_cast<std::size_t>(in.operand) - 1;
+        else --sp;
+        continue;
+      case kJumpIfFalseTrue:
+        if (stack[sp - 1] == 0) stack[sp - 1] = 1, pc = static_cast<std::size_t>(in.operand) - 1;
+        else --sp;
+        continue;
+      case kTruth: stack[sp - 1] = stack[sp - 1] != 0; continue;
+      default: break;
+    }
+    switch (static_cast<ir::Op>(in.op)) {
       case ir::Op::Const: stack[sp++] = in.operand; break;
       case ir::Op::Var: stack[sp++] = vars[in.operand]; break;
       case ir::Op::Not: stack[sp - 1] = stack[sp - 1] == 0; break;
@@ -47,7 +76,7 @@ Value Program::eval(const Value* vars) const {
       default: {
         Value b = stack[--sp];
         Value& a = stack[sp - 1];
-        switch (in.op) {
+        switch (static_cast<ir::Op>(in.op)) {
           case ir::Op::Add: a = a + b; break;
           case ir::Op::Sub: a = a - b; break;
           case ir::Op::Mul: a = a * b; break;
@@ -61,9 +90,6 @@ Value Program::eval(const Value* vars) const {
           case ir::Op::Le: a = a <= b; break;
           case ir::Op::Gt: a = a > b; break;
           case ir::Op::Ge: a = a >= b; break;
-          case ir::Op::And: a = (a != 0) && (b != 0); break;
-          case ir::Op::Or: a = (a != 0) || (b != 0); break;
-          case ir::Op::Implies: a = (a == 0) || (b != 0); break;
           default: break;
         }
       }

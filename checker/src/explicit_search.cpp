@@ -1,7 +1,9 @@
 #include "semo/checker/explicit_search.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <future>
 
 #include "semo/checker/compiled_model.hpp"
 #include "state_store.hpp"
@@ -44,8 +46,12 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
   std::vector<Value> values = cm.initialValues(), next(values.size()), scratch;
   std::vector<std::uint64_t> packed(layout.words());
   std::vector<std::uint32_t> candidates;
-  detail::SuccessorGenerator generator(cm, sym, limits.threads);
-  constexpr std::size_t kBlockPerThread = 4096;
+  // Two generators: one block is inserted while the next is expanded (with more than one thread).
+  std::array<detail::SuccessorGenerator, 2> generators{detail::SuccessorGenerator(cm, sym, limits.threads),
+                                                       detail::SuccessorGenerator(cm, sym, limits.threads)};
+  std::size_t current = 0;
+  std::future<void> ahead;
+  const std::size_t block = 4096 * std::max(1u, limits.threads);
 
   auto checkInvariants = [&](const Value* v, std::size_t index) {
     for (std::size_t p = 0; p < cm.invariants().size(); ++p) {
@@ -139,11 +145,21 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
       exhausted = !cutOff;
       break;
     }
-    if (i >= generator.expandedEnd()) {
-      // Expand the next block of stored states ahead, on every thread.
-      generator.expand(store, i, std::min(store.size(), i + kBlockPerThread * generator.threads()));
+    if (i >= generators[current].expandedEnd()) {
+      if (ahead.valid()) {
+        ahead.get();  // the block after the one just consumed, expanded meanwhile
+        current ^= 1;
+      }
+      if (i >= generators[current].expandedEnd()) generators[current].expand(store, i, std::min(store.size(), i + block));
+      // With more than one thread, the next block is expanded while this one is inserted.
+      std::size_t nextFirst = generators[current].expandedEnd(), nextEnd = std::min(store.size(), nextFirst + block);
+      if (limits.threads > 1 && nextEnd > nextFirst && !generators[current].of(i).rangeError) {
+        ahead = std::async(std::launch::async, [&generators, &store, other = current ^ 1, nextFirst, nextEnd] {
+          generators[other].expand(store, nextFirst, nextEnd);
+        });
+      }
     }
-    const detail::Expansion& e = generator.of(i);
+    const detail::Expansion& e = generators[current].of(i);
     const std::size_t local = i - e.firstState, words = layout.words();
     const std::uint32_t from = e.begin[local], to = e.begin[local + 1];
     result.transitions += to - from;

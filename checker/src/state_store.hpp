@@ -4,6 +4,7 @@
 // walk up the parents; in breadth-first order it is a shortest one).
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <stdexcept>
@@ -20,14 +21,21 @@ constexpr std::uint32_t kNoParent = 0xffffffffu;
 class StateStore {
  public:
   // `words`: 64-bit words per state (the engines may append words of their own after the model's).
-  explicit StateStore(std::size_t words) : words_(words), table_(1u << 16, 0) {}
+  explicit StateStore(std::size_t words) : words_(words), table_(1u << 16, 0) {
+    chunks_.reserve(std::size_t{1} << (32 - kChunkBits));  // never reallocated: see state()
+  }
 
   [[nodiscard]] std::size_t size() const { return parent_.size(); }
-  [[nodiscard]] const std::uint64_t* state(std::size_t i) const { return &data_[i * words_]; }
+  // Stored states never move: another thread may read the first n states (n known to it) while
+  // new ones are added.
+  [[nodiscard]] const std::uint64_t* state(std::size_t i) const {
+    return chunks_[i >> kChunkBits].get() + (i & ((std::size_t{1} << kChunkBits) - 1)) * words_;
+  }
   [[nodiscard]] std::uint32_t parent(std::size_t i) const { return parent_[i]; }
   [[nodiscard]] std::uint32_t via(std::size_t i) const { return via_[i]; }
   [[nodiscard]] std::uint64_t bytes() const {
-    return data_.capacity() * 8 + table_.capacity() * 8 + parent_.capacity() * 4 + via_.capacity() * 4;
+    return chunks_.size() * (std::size_t{1} << kChunkBits) * words_ * 8 + table_.capacity() * 8 + parent_.capacity() * 4 +
+           via_.capacity() * 4;
   }
   // data, parent, via, and the hash table (8-byte slots, at most half full)
   [[nodiscard]] std::uint64_t bytesPerState() const { return words_ * 8 + 4 + 4 + 16; }
@@ -59,7 +67,10 @@ class StateStore {
       if (entry == 0) {
         auto index = static_cast<std::uint32_t>(parent_.size());
         table_[slot] = (h & ~0xffffffffull) | (static_cast<std::uint64_t>(index) + 1);
-        data_.insert(data_.end(), s, s + words_);
+        if ((index >> kChunkBits) == chunks_.size()) {
+          chunks_.push_back(std::make_unique<std::uint64_t[]>((std::size_t{1} << kChunkBits) * words_));
+        }
+        std::copy_n(s, words_, chunks_[index >> kChunkBits].get() + (index & ((std::size_t{1} << kChunkBits) - 1)) * words_);
         parent_.push_back(parent);
         via_.push_back(via);
         return {index, true};
@@ -103,7 +114,8 @@ class StateStore {
   }
 
   std::size_t words_;
-  std::vector<std::uint64_t> data_;
+  static constexpr unsigned kChunkBits = 16;  // states per chunk: 2^16
+  std::vector<std::unique_ptr<std::uint64_t[]>> chunks_;
   std::vector<std::uint64_t> table_;  // (upper half of the hash) << 32 | (index + 1); 0: empty
   std::vector<std::uint32_t> parent_;
   std::vector<std::uint32_t> via_;  // rule << 8 | branch

@@ -10,7 +10,8 @@ namespace semo::checker {
 
 using Value = std::int32_t;
 
-// A postfix program; evaluating it never allocates.
+// A postfix program; evaluating it never allocates. `&&`, `||` and `=>` skip their right operand
+// when the left one decides (expressions have no side effects, so this changes no value).
 class Program {
  public:
   Program() = default;
@@ -18,8 +19,15 @@ class Program {
   [[nodiscard]] Value eval(const Value* vars) const;
 
  private:
+  // An IR operator, or one of these control instructions (operand: the index to jump to).
+  enum Control : std::uint8_t {
+    kJumpIfFalse = 100,  // top == 0: leave 0 and jump; else pop
+    kJumpIfTrue,         // top != 0: leave 1 and jump; else pop
+    kJumpIfFalseTrue,    // top == 0: leave 1 and jump (=>); else pop
+    kTruth,              // top = (top != 0)
+  };
   struct Instr {
-    ir::Op op;
+    std::uint8_t op;  // an ir::Op or a Control
     std::int32_t operand;
   };
   void compile(const ir::Expr& e);
