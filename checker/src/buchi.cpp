@@ -21,6 +21,7 @@ struct Formula {
 
 using Set = std::set<int>;
 constexpr int kInit = -1;  // the "incoming" mark of an initial node
+constexpr std::size_t kMaxNodes = 100000;  // the tableau is exponential in the formula
 
 struct Node {
   Set incoming, fresh, old, next;  // fresh: still to be processed ("New" in the original paper)
@@ -80,6 +81,7 @@ class Tableau {
           nodes_[same->second].incoming.insert(q.incoming.begin(), q.incoming.end());
           continue;
         }
+        if (nodes_.size() >= kMaxNodes) throw std::length_error("a property's automaton has more than 100000 states");
         int id = static_cast<int>(nodes_.size());
         nodeIndex_[{q.old, q.next}] = static_cast<std::size_t>(id);
         work.push_back(Node{{id}, q.next, {}, {}});

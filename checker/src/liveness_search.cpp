@@ -429,7 +429,15 @@ LivenessResult checkLiveness(const ir::Model& model, const SearchLimits& limits)
   LivenessResult result;
   for (const ir::Property& prop : model.properties) {
     PropertyResult pr{prop.name, prop.origin, Verdict::Unknown, {}};
-    Buchi ba = buildBuchi(ir::Ltl::unary(ir::Ltl::Kind::Not, prop.formula));
+    Buchi ba;
+    try {
+      ba = buildBuchi(ir::Ltl::unary(ir::Ltl::Kind::Not, prop.formula));
+    } catch (const std::length_error& e) {
+      result.complete = false;
+      if (result.limitReached.empty()) result.limitReached = prop.name + ": " + e.what();
+      result.properties.push_back(std::move(pr));
+      continue;
+    }
     Product product(cm, ba);
     std::string why;
     bool whole = product.explore(limits, start, result.states, why);

@@ -1,10 +1,12 @@
 // Fuzzes the IR text reader; whatever parses is written back, read again, and searched briefly, so
-// that the writer, the compiled evaluator and the explicit search see arbitrary models too.
+// that the writer, the compiled evaluator, the explicit search (with symmetry) and the liveness
+// engine see arbitrary models too.
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
 #include "semo/checker/explicit_search.hpp"
+#include "semo/checker/liveness_search.hpp"
 #include "semo/semantics/ir_text.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -20,5 +22,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   semo::checker::SearchLimits limits;
   limits.maxStates = 2000;
   (void)semo::checker::checkSafety(*model, limits);
+  (void)semo::checker::checkLiveness(*model, limits);
   return 0;
 }

@@ -27,8 +27,8 @@ struct Buchi {
   }
 };
 
-// Throws std::length_error when the formula has more than 64 until/eventually subformulas or more
-// than 64 atoms.
+// Throws std::length_error when the formula has more than 64 until/eventually subformulas, more
+// than 64 atoms, or an automaton of more than 100000 states.
 Buchi buildBuchi(const ir::Ltl& formula);
 
 }  // namespace semo::checker
