@@ -122,7 +122,53 @@ void Condition::add(const ir::Expr& e) {
     Op mirrored = e.op == Op::Lt ? Op::Gt : e.op == Op::Le ? Op::Ge : e.op == Op::Gt ? Op::Lt : e.op == Op::Ge ? Op::Le : e.op;
     return tests_.push_back({static_cast<ir::VarId>(e.args[1].value), mirrored, e.args[0].value});
   }
+  // A disjunction of such comparisons (the barriers: `!alive || !(pc > a && pc < b)` for each other
+  // robot) is a clause of tests.
+  std::vector<Test> clause;
+  if ((e.op == Op::Or || e.op == Op::Not || e.op == Op::Implies) && disjunction(e, false, clause) && !clause.empty()) {
+    clauses_.push_back({static_cast<std::uint32_t>(clauseTests_.size()), static_cast<std::uint32_t>(clauseTests_.size() + clause.size())});
+    clauseTests_.insert(clauseTests_.end(), clause.begin(), clause.end());
+    return;
+  }
   rest_.emplace_back(e);
+}
+
+bool Condition::disjunction(const ir::Expr& e, bool negated, std::vector<Test>& out) {
+  using ir::Op;
+  auto flip = [](Op op) {
+    switch (op) {
+      case Op::Eq: return Op::Ne;
+      case Op::Ne: return Op::Eq;
+      case Op::Lt: return Op::Ge;
+      case Op::Le: return Op::Gt;
+      case Op::Gt: return Op::Le;
+      default: return Op::Lt;  // Ge
+    }
+  };
+  switch (e.op) {
+    case Op::Not: return disjunction(e.args[0], !negated, out);
+    case Op::Or:   // a || b, or under negation !a && !b (not a disjunction)
+      return !negated && disjunction(e.args[0], false, out) && disjunction(e.args[1], false, out);
+    case Op::And:  // !(a && b) is !a || !b
+      return negated && disjunction(e.args[0], true, out) && disjunction(e.args[1], true, out);
+    case Op::Implies:  // a => b is !a || b
+      return !negated && disjunction(e.args[0], true, out) && disjunction(e.args[1], false, out);
+    case Op::Var:
+      out.push_back({static_cast<ir::VarId>(e.value), negated ? Op::Eq : Op::Ne, 0});
+      return true;
+    case Op::Eq: case Op::Ne: case Op::Lt: case Op::Le: case Op::Gt: case Op::Ge: {
+      Op op = e.op;
+      const ir::Expr *var = &e.args[0], *constant = &e.args[1];
+      if (var->op == Op::Const && constant->op == Op::Var) {
+        std::swap(var, constant);
+        op = op == Op::Lt ? Op::Gt : op == Op::Le ? Op::Ge : op == Op::Gt ? Op::Lt : op == Op::Ge ? Op::Le : op;
+      }
+      if (var->op != Op::Var || constant->op != Op::Const) return false;
+      out.push_back({static_cast<ir::VarId>(var->value), negated ? flip(op) : op, constant->value});
+      return true;
+    }
+    default: return false;
+  }
 }
 
 StateLayout::StateLayout(const ir::Model& model) {

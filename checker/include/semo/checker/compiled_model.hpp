@@ -47,6 +47,11 @@ class Condition {
     for (const Test& t : tests_) {
       if (!t.holds(vars[t.var])) return false;
     }
+    for (const Clause& c : clauses_) {
+      bool any = false;
+      for (std::uint32_t k = c.first; k < c.end && !any; ++k) any = clauseTests_[k].holds(vars[clauseTests_[k].var]);
+      if (!any) return false;
+    }
     for (const Program& p : rest_) {
       if (p.eval(vars) == 0) return false;
     }
@@ -70,8 +75,15 @@ class Condition {
       }
     }
   };
+  struct Clause {
+    std::uint32_t first, end;  // a disjunction of clauseTests_[first, end)
+  };
   void add(const ir::Expr& conjunct);
+  // Appends e (negated when `negated`) as a disjunction of tests, if it is one.
+  static bool disjunction(const ir::Expr& e, bool negated, std::vector<Test>& out);
   std::vector<Test> tests_;
+  std::vector<Clause> clauses_;
+  std::vector<Test> clauseTests_;
   std::vector<Program> rest_;
 };
 
