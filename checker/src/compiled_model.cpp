@@ -240,7 +240,13 @@ CompiledModel::CompiledModel(const ir::Model& model) : model_(&model), layout_(m
     CompiledRule c{Condition(r.guard), {}};
     for (const ir::Branch& b : r.branches) {
       CompiledBranch cb;
-      for (const ir::Assignment& a : b.assignments) cb.assignments.push_back({a.var, Program(a.value)});
+      for (const ir::Assignment& a : b.assignments) {
+        const ir::Variable& target = model.variables[a.var];
+        bool safe = (a.value.op == ir::Op::Const && a.value.value >= target.min && a.value.value <= target.max) ||
+                    (a.value.op == ir::Op::Var && model.variables[static_cast<std::size_t>(a.value.value)].min >= target.min &&
+                     model.variables[static_cast<std::size_t>(a.value.value)].max <= target.max);
+        cb.assignments.push_back({a.var, Program(a.value), !safe});
+      }
       c.branches.push_back(std::move(cb));
     }
     rules_.push_back(std::move(c));

@@ -38,7 +38,7 @@ void SuccessorGenerator::run(Worker& w, const StateStore& store, Expansion& out)
         bool inRange = true;
         for (std::size_t a = 0; a < branch.assignments.size(); ++a) {
           w.scratch[a] = branch.assignments[a].value.eval(w.values.data());
-          inRange = inRange && cm_.inRange(branch.assignments[a].var, w.scratch[a]);
+          inRange = inRange && (!branch.assignments[a].mayLeaveRange || cm_.inRange(branch.assignments[a].var, w.scratch[a]));
         }
         if (!inRange) {
           Step step{r, b, {}};

@@ -115,6 +115,7 @@ class StateLayout {
 struct CompiledAssignment {
   ir::VarId var;
   Program value;
+  bool mayLeaveRange = true;  // false for a constant in range, or a copy of a variable of the same range
 };
 
 struct CompiledBranch {
