@@ -1,7 +1,9 @@
 #include "semo/checker/liveness_search.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <thread>
 #include <deque>
 #include <stdexcept>
 
@@ -423,45 +425,83 @@ Trace lasso(const CompiledModel& cm, const Product& p, std::uint32_t entry, cons
 
 }  // namespace
 
+namespace {
+
+struct Outcome {
+  PropertyResult property;
+  std::uint64_t states = 0, transitions = 0;
+  bool whole = true;
+  std::string why;
+};
+
+Outcome checkProperty(const CompiledModel& cm, const ir::Property& prop, const SearchLimits& limits, Clock::time_point start) {
+  Outcome out{{prop.name, prop.origin, Verdict::Unknown, {}}, 0, 0, true, {}};
+  Buchi ba;
+  try {
+    ba = buildBuchi(ir::Ltl::unary(ir::Ltl::Kind::Not, prop.formula));
+  } catch (const std::length_error& e) {
+    out.whole = false;
+    out.why = prop.name + ": " + e.what();
+    return out;
+  }
+  Product product(cm, ba);
+  out.whole = product.explore(limits, start, 0, out.why);
+  out.states = product.size();
+  out.transitions = product.edgeCount();
+  if (!out.whole) return out;
+  FairCycleSearch search(cm, ba, product);
+  std::vector<std::uint32_t> cycle = search.find();
+  if (cycle.empty()) {
+    out.property.verdict = Verdict::Proven;
+    return out;
+  }
+  std::uint32_t entry = *std::min_element(cycle.begin(), cycle.end());  // breadth-first: the shortest way in
+  Trace t = lasso(cm, product, entry, fairLoop(cm, ba, product, search, cycle, entry));
+  t.property = prop.name;
+  t.kind = "lasso";
+  out.property.verdict = Verdict::Violated;
+  out.property.counterexample = std::move(t);
+  return out;
+}
+
+}  // namespace
+
 LivenessResult checkLiveness(const ir::Model& model, const SearchLimits& limits) {
   auto start = Clock::now();
   CompiledModel cm(model);
   LivenessResult result;
-  for (const ir::Property& prop : model.properties) {
-    PropertyResult pr{prop.name, prop.origin, Verdict::Unknown, {}};
-    Buchi ba;
-    try {
-      ba = buildBuchi(ir::Ltl::unary(ir::Ltl::Kind::Not, prop.formula));
-    } catch (const std::length_error& e) {
+  // The properties' products are independent: up to `threads` are searched at once, each within
+  // --max-states and its share of --max-memory; only the first worker reports progress.
+  const std::size_t n = model.properties.size();
+  const std::size_t workers = std::min<std::size_t>(n, std::max(1u, limits.threads));
+  std::vector<Outcome> outcomes(n);
+  std::atomic<std::size_t> next{0};
+  auto work = [&](std::size_t worker) {
+    SearchLimits mine = limits;
+    mine.maxMemoryBytes = limits.maxMemoryBytes / std::max<std::size_t>(1, workers);
+    if (worker != 0) mine.onProgress = nullptr;
+    for (std::size_t k = next++; k < n; k = next++) outcomes[k] = checkProperty(cm, model.properties[k], mine, start);
+  };
+  std::vector<std::thread> helpers;
+  for (std::size_t w = 1; w < workers; ++w) helpers.emplace_back(work, w);
+  work(0);
+  for (std::thread& h : helpers) h.join();
+  // A product that outgrew its share of the memory gets the whole budget, alone.
+  if (workers > 1) {
+    for (std::size_t k = 0; k < n; ++k) {
+      if (!outcomes[k].whole && outcomes[k].why.rfind("--max-memory", 0) == 0) {
+        outcomes[k] = checkProperty(cm, model.properties[k], limits, start);
+      }
+    }
+  }
+  for (Outcome& o : outcomes) {
+    result.states += o.states;
+    result.transitions += o.transitions;
+    if (!o.whole) {
       result.complete = false;
-      if (result.limitReached.empty()) result.limitReached = prop.name + ": " + e.what();
-      result.properties.push_back(std::move(pr));
-      continue;
+      if (result.limitReached.empty()) result.limitReached = o.why;
     }
-    Product product(cm, ba);
-    std::string why;
-    bool whole = product.explore(limits, start, result.states, why);
-    result.states += product.size();
-    result.transitions += product.edgeCount();
-    if (!whole) {
-      result.complete = false;
-      if (result.limitReached.empty()) result.limitReached = why;
-      result.properties.push_back(std::move(pr));
-      continue;
-    }
-    FairCycleSearch search(cm, ba, product);
-    std::vector<std::uint32_t> cycle = search.find();
-    if (cycle.empty()) {
-      pr.verdict = Verdict::Proven;
-    } else {
-      std::uint32_t entry = *std::min_element(cycle.begin(), cycle.end());  // breadth-first: the shortest way in
-      Trace t = lasso(cm, product, entry, fairLoop(cm, ba, product, search, cycle, entry));
-      t.property = prop.name;
-      t.kind = "lasso";
-      pr.verdict = Verdict::Violated;
-      pr.counterexample = std::move(t);
-    }
-    result.properties.push_back(std::move(pr));
+    result.properties.push_back(std::move(o.property));
   }
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;

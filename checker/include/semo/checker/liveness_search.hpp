@@ -22,6 +22,9 @@ struct LivenessResult {
   double seconds = 0;
 };
 
+// Each property has its own product; up to limits.threads of them are searched at once, each
+// within limits.maxStates and an equal share of limits.maxMemoryBytes (one that outgrows its share
+// is searched again afterwards, alone, with the whole budget).
 LivenessResult checkLiveness(const ir::Model& model, const SearchLimits& limits);
 
 }  // namespace semo::checker
