@@ -43,13 +43,13 @@ int main(int argc, char** argv) {
   semo::cli::CheckOptions check;
   CLI::App* checkCmd = app.add_subcommand("check", "Prove the mission's safety properties, or print a counterexample");
   addModelOptions(checkCmd, check.model);
-  checkCmd->add_option("--max-states", check.maxStates, "Stop after this many states (exit 3, partial result)");
+  checkCmd->add_option("--max-states", check.maxStates, "Stop after this many states (per liveness product; exit 3, partial result)");
   checkCmd->add_option("--max-memory", check.maxMemoryMiB, "Stop when the state store reaches this many MiB (exit 3)");
   checkCmd->add_option("--max-depth", check.maxDepth,
                        "Explore only paths of at most this many steps (bounded search: exit 3 unless nothing lies beyond)");
   checkCmd->add_flag_callback("--no-symmetry", [&check] { check.symmetry = false; },
                               "Store every state, not one per ordering of interchangeable robots (safety search)");
-  checkCmd->add_option("--threads", check.threads, "Threads for the safety search (default: one per core; the results do not depend on it)")
+  checkCmd->add_option("--threads", check.threads, "Threads for the searches (default: one per core; the results do not depend on it)")
       ->check(CLI::Range(1u, 256u));
   checkCmd->add_flag("--safety-only", check.safetyOnly, "Check the invariants and deadlock freedom only, not the LTL properties");
   checkCmd->add_flag("--json", check.json, "Print the verdicts and counterexamples as JSON (specs/trace.md)");
