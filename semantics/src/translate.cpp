@@ -239,6 +239,9 @@ std::vector<ir::Assignment> Translator::enterMode(Index robot, Index mode) const
     }
     out.push_back({*v.pc[p], Expr::constant(static_cast<std::int32_t>(entry))});
   }
+  // Its services restart, so it has left every group block: a leader stops leading (and sending
+  // heartbeats), and the others may take over.
+  for (const auto& [block, leads] : v.leads) out.push_back({leads, Expr::constant(0)});
   return out;
 }
 
@@ -317,6 +320,9 @@ void Translator::blockExitRules(Index robot, std::size_t planIndex, std::size_t 
                                    Expr::binary(Op::Lt, pc, Expr::constant(static_cast<std::int32_t>(range->last)))});
     path.guard.push_back(Expr::binary(Op::Or, lnot(alive(q)), lnot(std::move(inside))));
   }
+  if (auto leads = vars_[robot].leads.find(range->block); leads != vars_[robot].leads.end()) {
+    path.updates.push_back({leads->second, Expr::constant(0)});  // a leader's part ends with the block
+  }
   path.words.push_back("leaves the group block");
   walk(robot, planIndex, prog.code[at].next, std::move(path), at, 1);
 }
@@ -388,7 +394,13 @@ void Translator::finish(Index robot, std::size_t planIndex, std::size_t start, s
   for (Expr& g : path.guard) guard.push_back(std::move(g));
   rule.guard = ir::conjunction(std::move(guard));
   ir::Branch branch;
-  branch.assignments = std::move(path.updates);
+  // One assignment per variable: a later one in the walk (a mode change after leaving a block,
+  // which both clear `leads`) overrides an earlier one.
+  for (ir::Assignment& a : path.updates) {
+    auto same = std::find_if(branch.assignments.begin(), branch.assignments.end(), [&](const ir::Assignment& b) { return b.var == a.var; });
+    if (same != branch.assignments.end()) *same = std::move(a);
+    else branch.assignments.push_back(std::move(a));
+  }
   if (!path.changesMode && target != start) {
     branch.assignments.push_back({*v.pc[planIndex], Expr::constant(static_cast<std::int32_t>(target))});
   }

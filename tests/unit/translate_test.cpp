@@ -154,5 +154,52 @@ TEST(Translate, TextFormRoundTripsAndExploresTheSameStates) {
   EXPECT_EQ(checker::checkSafety(*again, {}).states, checker::checkSafety(*t->model, {}).states);
 }
 
+TEST(Translate, ALeaderThatLeavesItsBlockStopsLeading) {
+  // Scouting: the ev3s elect a reporting leader (ReportPapers); a robot whose mode changes, or
+  // that leaves the block, no longer leads (no more heartbeats), so the other can take over.
+  SourceManager sources;
+  DiagnosticEngine diags(sources);
+  auto m = loadMission({SEMO_SOURCE_DIR "/specs/examples/scouting/scouting.semo",
+                        SEMO_SOURCE_DIR "/specs/examples/scouting/strategy.xml", std::nullopt}, sources, diags);
+  ASSERT_TRUE(m.has_value());
+  auto model = translate(*m, {}, sources, diags);
+  ASSERT_TRUE(model.has_value());
+  std::optional<ir::VarId> leads;
+  for (ir::VarId v = 0; v < model->variables.size(); ++v) {
+    if (model->variables[v].name.rfind("ev3_0.leads.ReportPapers", 0) == 0) leads = v;
+  }
+  ASSERT_TRUE(leads.has_value());
+  // Whether the rule sets `leads` to 0 in every state where it is taken (a mode change is written
+  // as a choice over the current mode, which leaves `leads` alone where the mode does not change).
+  auto clears = [&](const ir::Rule& r, bool always) {
+    for (const ir::Branch& b : r.branches) {
+      for (const ir::Assignment& a : b.assignments) {
+        if (a.var != *leads) continue;
+        if (a.value.op == ir::Op::Const) return a.value.value == 0;
+        return !always;
+      }
+    }
+    return false;
+  };
+  std::size_t modeChanges = 0, exits = 0;
+  for (const ir::Rule& r : model->rules) {
+    if (r.robot < 0 || model->robots[static_cast<std::size_t>(r.robot)] != "ev3_0") continue;
+    bool changesMode = false;
+    for (const ir::Branch& b : r.branches) {
+      for (const ir::Assignment& a : b.assignments) changesMode = changesMode || model->variables[a.var].name == "ev3_0.mode";
+    }
+    if (changesMode) {
+      ++modeChanges;
+      EXPECT_TRUE(clears(r, false)) << r.name << ": " << r.label;
+    }
+    if (r.label.find("leaves the group block") != std::string::npos && r.name.rfind("ev3_0.Report.", 0) == 0) {
+      ++exits;
+      EXPECT_TRUE(clears(r, true)) << r.name;
+    }
+  }
+  EXPECT_GT(modeChanges, 3u);
+  EXPECT_EQ(exits, 1u);
+}
+
 }  // namespace
 }  // namespace semo
