@@ -189,29 +189,14 @@ class Reader {
     } else if (isWord("invariant")) {
       advance();
       Invariant inv;
-      const Token& nameToken = peek();
-      inv.name = declaredName("an invariant name").first;
-      // Verdicts and JSON output are keyed by name: two invariants of one name would be ambiguous.
-      if (!invariantNames_.insert(inv.name).second) fail(nameToken, "invariant '" + inv.name + "' is declared twice");
-      attributes([&](const Token& key, const std::string& value) {
-        if (key.text == "origin") return inv.origin = value, true;
-        return false;
-      });
-      expect(":", "after the invariant name");
+      verdictHeader("invariant", inv.name, inv.origin);
       inv.holds = expr();
       expect(";", "after the invariant");
       model_.invariants.push_back(std::move(inv));
     } else if (isWord("property")) {
       advance();
       Property prop;
-      const Token& nameToken = peek();
-      prop.name = declaredName("a property name").first;
-      if (!invariantNames_.insert(prop.name).second) fail(nameToken, "property '" + prop.name + "' is declared twice");
-      attributes([&](const Token& key, const std::string& value) {
-        if (key.text == "origin") return prop.origin = value, true;
-        return false;
-      });
-      expect(":", "after the property name");
+      verdictHeader("property", prop.name, prop.origin);
       prop.formula = ltl();
       expect(";", "after the property");
       model_.properties.push_back(std::move(prop));
@@ -224,6 +209,19 @@ class Reader {
     } else {
       fail(peek(), "expected 'var', 'rule', 'invariant', 'property', 'valid_end', 'robots' or 'assume', found " + found());
     }
+  }
+
+  // `NAME [@origin("...")] :` of an invariant or a property. Verdicts and JSON output are keyed by
+  // name: two of one name (invariants and properties together) would be ambiguous.
+  void verdictHeader(const std::string& what, std::string& name, std::string& origin) {
+    const Token& nameToken = peek();
+    name = declaredName(std::string(what == "invariant" ? "an " : "a ") + what + " name").first;
+    if (!invariantNames_.insert(name).second) fail(nameToken, what + " '" + name + "' is declared twice");
+    attributes([&](const Token& key, const std::string& value) {
+      if (key.text == "origin") return origin = value, true;
+      return false;
+    });
+    expect(":", "after the " + what + " name");
   }
 
   static std::string unescape(std::string_view raw) {

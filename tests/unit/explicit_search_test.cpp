@@ -2,30 +2,17 @@
 // export's naming and arithmetic (its state counts are cross-checked with SPIN in tests/e2e/spin).
 #include <gtest/gtest.h>
 
-#include <filesystem>
-#include <fstream>
-#include <sstream>
-
 #include "semo/checker/explicit_search.hpp"
 #include "semo/checker/promela_export.hpp"
 #include "semo/checker/symmetry.hpp"
 #include "semo/checker/trace.hpp"
+#include "ir_support.hpp"
 #include "semo/semantics/ir_text.hpp"
 
 namespace semo::checker {
 namespace {
 
-ir::Model parse(const std::string& text) {
-  SourceManager sources;
-  DiagnosticEngine diags(sources);
-  FileId file = sources.add("test.ir", text);
-  std::optional<ir::Model> m = ir::parseText(sources, file, diags);
-  if (!m) {
-    for (const Diagnostic& d : diags.diagnostics()) ADD_FAILURE() << d.range.begin.line << ":" << d.range.begin.column << ": " << d.message;
-    return {};
-  }
-  return *m;
-}
+ir::Model parse(const std::string& text) { return test::parseIr(text); }
 
 SearchResult check(const ir::Model& m, std::uint64_t maxStates = 1'000'000) {
   SearchLimits limits;
@@ -481,14 +468,8 @@ TEST(Symmetry, CanonicalFormSortsRobotsByTheirValues) {
 }
 
 TEST(ExplicitSearch, ThreadsChangeNothingButSpeed) {
-  std::size_t models = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(SEMO_SOURCE_DIR "/tests/e2e/ir")) {
-    if (entry.path().extension() != ".ir") continue;
-    std::ifstream in(entry.path());
-    std::stringstream text;
-    text << in.rdbuf();
-    SCOPED_TRACE(entry.path().string());
-    ir::Model m = parse(text.str());
+  std::size_t models = test::forEachShippedModel([](const std::string&, const std::string& text) {
+    ir::Model m = parse(text);
     for (bool symmetry : {false, true}) {
       SearchLimits one, three;
       one.symmetry = three.symmetry = symmetry;
@@ -507,8 +488,7 @@ TEST(ExplicitSearch, ThreadsChangeNothingButSpeed) {
         }
       }
     }
-    ++models;
-  }
+  });
   EXPECT_GE(models, 8u);
 }
 

@@ -2,10 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <climits>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 
+#include "ir_support.hpp"
 #include "semo/semantics/ir_text.hpp"
 
 namespace semo {
@@ -198,16 +196,7 @@ TEST(IrText, RoundTripOfNamesThatAreNotNameTokens) {
 }
 
 TEST(IrText, RoundTripOfEveryShippedModel) {
-  std::size_t models = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(SEMO_SOURCE_DIR "/tests/e2e/ir")) {
-    if (entry.path().extension() != ".ir") continue;
-    std::ifstream in(entry.path());
-    std::stringstream text;
-    text << in.rdbuf();
-    SCOPED_TRACE(entry.path().string());
-    expectRoundTrip(parse(text.str()));
-    ++models;
-  }
+  std::size_t models = test::forEachShippedModel([](const std::string&, const std::string& text) { expectRoundTrip(parse(text)); });
   EXPECT_GE(models, 8u);
 }
 

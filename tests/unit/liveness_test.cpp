@@ -4,22 +4,13 @@
 
 #include "semo/checker/buchi.hpp"
 #include "semo/checker/liveness_search.hpp"
+#include "ir_support.hpp"
 #include "semo/semantics/ir_text.hpp"
 
 namespace semo::checker {
 namespace {
 
-ir::Model parse(const std::string& text) {
-  SourceManager sources;
-  DiagnosticEngine diags(sources);
-  FileId file = sources.add("test.ir", text);
-  std::optional<ir::Model> m = ir::parseText(sources, file, diags);
-  if (!m) {
-    for (const Diagnostic& d : diags.diagnostics()) ADD_FAILURE() << d.range.begin.line << ":" << d.range.begin.column << ": " << d.message;
-    return {};
-  }
-  return *m;
-}
+ir::Model parse(const std::string& text) { return test::parseIr(text); }
 
 Verdict verdictOf(const std::string& model, const std::string& property, LivenessResult* out = nullptr) {
   ir::Model m = parse(model + "property p : " + property + ";\n");
