@@ -139,9 +139,17 @@ void Translator::variables() {
         for (std::size_t i = 0; i < prog.code.size(); ++i) {
           const Instr& in = prog.code[i];
           // One word per value (the IR's @values): service, instruction, and the mission line:col.
-          std::string label = i == 0 ? "done" : m_.services[in.service].name + "#" + std::to_string(i);
+          // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) on "@" + to_string(...).
+          std::string label = i == 0 ? std::string("done") : m_.services[in.service].name;
+          if (i != 0) {
+            label += '#';
+            label += std::to_string(i);
+          }
           if (i != 0 && in.stmt != nullptr) {
-            label += "@" + std::to_string(in.stmt->at.begin.line) + ":" + std::to_string(in.stmt->at.begin.column);
+            label += '@';
+            label += std::to_string(in.stmt->at.begin.line);
+            label += ':';
+            label += std::to_string(in.stmt->at.begin.column);
           }
           labels.push_back(std::move(label));
         }

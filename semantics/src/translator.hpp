@@ -1,6 +1,6 @@
 #pragma once
-// The translator from MissionModel to IR, shared by translate.cpp (variables and robot programs)
-// and translate_network.cpp (events, messages, crashes, leaders, modes, properties).
+// The translator from MissionModel to IR, shared by translate.cpp (variables and robot programs),
+// translate_network.cpp (events, messages, crashes, leaders, modes) and translate_properties.cpp.
 #include <functional>
 #include <map>
 #include <optional>
