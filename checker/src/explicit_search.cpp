@@ -43,9 +43,8 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
   const Symmetry* sym = symmetry.empty() ? nullptr : &symmetry;
   StateStore store(layout.words());
   result.bytesPerState = store.bytesPerState();
-  std::vector<Value> values = cm.initialValues(), next(values.size()), scratch;
+  std::vector<Value> values = cm.initialValues(), next(values.size());
   std::vector<std::uint64_t> packed(layout.words());
-  std::vector<std::uint32_t> candidates;
   // Two generators: one block is inserted while the next is expanded (with more than one thread).
   std::array<detail::SuccessorGenerator, 2> generators{detail::SuccessorGenerator(cm, sym, limits.threads),
                                                        detail::SuccessorGenerator(cm, sym, limits.threads)};
@@ -80,36 +79,6 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
     --open;
   };
 
-  // For a state at a --max-depth bound, which is not expanded: whether a rule is enabled, and
-  // whether a successor is not yet stored (or out of range), i.e. the bound cut something off.
-  struct Frontier {
-    bool enabled = false, cutOff = false;
-  };
-  auto probe = [&](const Value* v) {
-    Frontier f;
-    cm.candidateRules(v, candidates);
-    for (std::uint32_t r : candidates) {
-      const CompiledRule& rule = cm.rules()[r];
-      if (rule.guard.eval(v) == 0) continue;
-      f.enabled = true;
-      for (const CompiledBranch& branch : rule.branches) {
-        std::copy_n(v, next.size(), next.begin());
-        scratch.resize(branch.assignments.size());
-        bool inRange = true;
-        for (std::size_t a = 0; a < branch.assignments.size(); ++a) {
-          scratch[a] = branch.assignments[a].value.eval(v);
-          inRange = inRange && cm.inRange(branch.assignments[a].var, scratch[a]);
-        }
-        if (!inRange) return Frontier{true, true};
-        for (std::size_t a = 0; a < branch.assignments.size(); ++a) next[branch.assignments[a].var] = scratch[a];
-        if (sym != nullptr) sym->canonicalize(next.data());
-        layout.pack(next.data(), packed.data());
-        if (!store.contains(packed.data())) return Frontier{true, true};
-      }
-    }
-    return f;
-  };
-
   std::size_t levelEnd = 1;
   double nextReport = 1.0;
   bool stopped = false, exhausted = false, cutOff = false;
@@ -131,12 +100,24 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
       levelEnd = store.size();
     }
     if (result.depth >= limits.maxDepth) {
-      // States i.. lie at the bound: judged (invariants when stored, deadlock here) but not expanded.
-      for (std::size_t j = i; j < store.size(); ++j) {
-        layout.unpack(store.state(j), values.data());
-        Frontier f = probe(values.data());
-        cutOff = cutOff || f.cutOff;
-        if (!f.enabled) judgeDeadlock(values.data(), j);
+      // States i.. lie at the bound: judged (invariants when stored, deadlock here) but not
+      // inserted. The bound cut something off if one of them has a successor not yet stored (or
+      // an update out of range).
+      if (ahead.valid()) ahead.get();
+      detail::SuccessorGenerator& g = generators[current];
+      const std::size_t frontierEnd = store.size(), words = layout.words();
+      for (std::size_t j = i; j < frontierEnd; j = g.expandedEnd()) {
+        g.expand(store, j, std::min(frontierEnd, j + block));
+        for (std::size_t k = j; k < g.expandedEnd(); ++k) {
+          const detail::Expansion& e = g.of(k);
+          const std::size_t local = k - e.firstState;
+          for (std::uint32_t n = e.begin[local]; n < e.begin[local + 1] && !cutOff; ++n) cutOff = !store.contains(&e.packed[n * words]);
+          cutOff = cutOff || (e.rangeError && e.rangeError->state == k);
+          if (e.enabled[local] == 0) {
+            layout.unpack(store.state(k), values.data());
+            judgeDeadlock(values.data(), k);
+          }
+        }
       }
       if (cutOff) {
         result.limitReached = "--max-depth " + std::to_string(limits.maxDepth) + " reached";

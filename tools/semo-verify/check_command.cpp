@@ -176,7 +176,7 @@ int runCheck(const CheckOptions& options) {
       std::cout << "  (all " << r.states << " reachable states" << (r.symmetry.empty() ? "" : " up to symmetry")
                 << ", under the assumptions above)";
     } else if (p.verdict == checker::Verdict::Unknown && r.depthBounded) {
-      std::cout << "  (holds on every path of up to " << r.depth << " steps, " << r.states
+      std::cout << "  (holds on every path of up to " << r.depth << (r.depth == 1 ? " step, " : " steps, ") << r.states
                 << " states; longer paths not explored)";
     } else if (p.verdict == checker::Verdict::Unknown) {
       std::cout << "  (not violated in the " << r.states << " states explored; the search was not complete)";
