@@ -230,17 +230,21 @@ std::string toText(const Model& m) {
     out << ";\n";
   }
   if (!m.invariants.empty()) out << '\n';
+  // `keyword NAME [@origin(...)] : `, the start of an invariant or a property.
+  auto header = [&](const char* keyword, const std::string& name, const std::string& origin) {
+    out << keyword << ' ' << (isPlainName(name, true) ? name : quoted(name));
+    if (!origin.empty()) out << " @origin(" << quoted(origin) << ')';
+    out << " : ";
+  };
   for (const Invariant& inv : m.invariants) {
-    out << "invariant " << (isPlainName(inv.name, true) ? inv.name : quoted(inv.name));
-    if (!inv.origin.empty()) out << " @origin(" << quoted(inv.origin) << ')';
-    out << " : " << toText(m, inv.holds) << ";\n";
+    header("invariant", inv.name, inv.origin);
+    out << toText(m, inv.holds) << ";\n";
   }
   if (m.validEnd) out << "valid_end : " << toText(m, *m.validEnd) << ";\n";
   if (!m.properties.empty()) out << '\n';
   for (const Property& p : m.properties) {
-    out << "property " << (isPlainName(p.name, true) ? p.name : quoted(p.name));
-    if (!p.origin.empty()) out << " @origin(" << quoted(p.origin) << ')';
-    out << " : " << toText(m, p.formula) << ";\n";
+    header("property", p.name, p.origin);
+    out << toText(m, p.formula) << ";\n";
   }
   return out.str();
 }
