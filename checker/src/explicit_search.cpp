@@ -1,13 +1,13 @@
 #include "semo/checker/explicit_search.hpp"
 
 #include <algorithm>
-#include <array>
 #include <chrono>
-#include <future>
 
 #include "semo/checker/compiled_model.hpp"
+#include "block_insertion.hpp"
 #include "state_store.hpp"
 #include "successors.hpp"
+#include "worker_pool.hpp"
 
 namespace semo::checker {
 
@@ -43,50 +43,68 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
   const Symmetry* sym = symmetry.empty() ? nullptr : &symmetry;
   StateStore store(layout.words());
   result.bytesPerState = store.bytesPerState();
-  std::vector<Value> values = cm.initialValues(), next(values.size());
+  std::vector<Value> values = cm.initialValues();
   std::vector<std::uint64_t> packed(layout.words());
-  // Two generators: one block is inserted while the next is expanded (with more than one thread).
-  std::array<detail::SuccessorGenerator, 2> generators{detail::SuccessorGenerator(cm, sym, limits.threads),
-                                                       detail::SuccessorGenerator(cm, sym, limits.threads)};
-  std::size_t current = 0;
-  std::future<void> ahead;
-  const std::size_t block = 4096 * std::max(1u, limits.threads);
+  detail::WorkerPool pool(limits.threads);
+  detail::SuccessorGenerator generator(cm, sym, pool.size());
+  detail::BlockInserter inserter;
+  // States expanded and inserted together. Fixed, not a multiple of the threads: where the blocks
+  // end decides when the store grows, hence --max-memory's cut.
+  constexpr std::size_t kBlock = 8192;
 
-  auto checkInvariants = [&](const Value* v, std::size_t index) {
-    for (std::size_t p = 0; p < cm.invariants().size(); ++p) {
-      if (result.properties[p].verdict == Verdict::Violated || cm.invariants()[p].eval(v) != 0) continue;
-      result.properties[p].verdict = Verdict::Violated;
-      Trace t = traceTo(cm, store, index, sym);
-      t.property = result.properties[p].name;
-      t.kind = "invariant";
-      result.properties[p].counterexample = std::move(t);
-      --open;
-    }
+  auto violate = [&](std::size_t property, std::size_t index, const char* kind) {
+    result.properties[property].verdict = Verdict::Violated;
+    Trace t = traceTo(cm, store, index, sym);
+    t.property = result.properties[property].name;
+    t.kind = kind;
+    result.properties[property].counterexample = std::move(t);
+    --open;
   };
+  const std::size_t invariants = cm.invariants().size();
+  auto isOpen = [&](std::size_t property) { return result.properties[property].verdict != Verdict::Violated; };
 
   layout.pack(values.data(), packed.data());
   store.insert(packed.data(), kNoParent, 0);
-  checkInvariants(values.data(), 0);
+  for (std::size_t p = 0; p < invariants; ++p) {
+    if (cm.invariants()[p].eval(values.data()) == 0) violate(p, 0, "invariant");
+  }
 
-  auto judgeDeadlock = [&](const Value* v, std::size_t index) {
-    if (deadlockIndex == SIZE_MAX || result.properties[deadlockIndex].verdict == Verdict::Violated) return;
-    if (validEnd->eval(v) != 0) return;
-    result.properties[deadlockIndex].verdict = Verdict::Violated;
-    Trace t = traceTo(cm, store, index, sym);
-    t.property = "deadlock_freedom";
-    t.kind = "deadlock";
-    result.properties[deadlockIndex].counterexample = std::move(t);
-    --open;
+  auto judgeDeadlock = [&](std::size_t index) {
+    if (deadlockIndex == SIZE_MAX || !isOpen(deadlockIndex)) return;
+    layout.unpack(store.state(index), values.data());
+    if (validEnd->eval(values.data()) == 0) violate(deadlockIndex, index, "deadlock");
+  };
+
+  // The invariants on the new states of a block, on every thread: per thread and invariant, the
+  // first state (in the numbering) that violates it. Only those open when the block starts.
+  std::vector<std::uint8_t> checked(invariants);
+  // Sized by its thread on first use, so that no cache line holds two threads' scratch (see the
+  // generator's Worker).
+  struct alignas(64) InvariantScratch {
+    std::vector<Value> values;
+    std::vector<std::size_t> firstViolation;  // per invariant, checked or not
+  };
+  std::vector<InvariantScratch> scratch(pool.size());
+  auto checkNewStates = [&](unsigned thread, std::size_t first, std::size_t end) {
+    InvariantScratch& own = scratch[thread];
+    own.values.resize(layout.variables());
+    own.firstViolation.resize(invariants, SIZE_MAX);
+    for (std::size_t i = first; i < end; ++i) {
+      layout.unpack(store.state(i), own.values.data());
+      for (std::size_t p = 0; p < invariants; ++p) {
+        if (checked[p] != 0 && i < own.firstViolation[p] && cm.invariants()[p].eval(own.values.data()) == 0) own.firstViolation[p] = i;
+      }
+    }
   };
 
   std::size_t levelEnd = 1;
   double nextReport = 1.0;
   bool stopped = false, exhausted = false, cutOff = false;
-  for (std::size_t i = 0;; ++i) {
+  for (std::size_t first = 0;;) {
     // Before the exhaustion test: a range error in the last queued state leaves its successor
     // unexplored, so the search is not complete.
     if (stopped) break;
-    if (i == store.size()) {
+    if (first == store.size()) {
       exhausted = true;
       break;
     }
@@ -95,28 +113,23 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
       result.limitReached = "every property is violated";
       break;
     }
-    if (i == levelEnd) {
-      ++result.depth;  // the depth of state i
+    if (first == levelEnd) {
+      ++result.depth;  // the depth of state `first`
       levelEnd = store.size();
     }
     if (result.depth >= limits.maxDepth) {
-      // States i.. lie at the bound: judged (invariants when stored, deadlock here) but not
+      // States first.. lie at the bound: judged (invariants when stored, deadlock here) but not
       // inserted. The bound cut something off if one of them has a successor not yet stored (or
       // an update out of range).
-      if (ahead.valid()) ahead.get();
-      detail::SuccessorGenerator& g = generators[current];
       const std::size_t frontierEnd = store.size(), words = layout.words();
-      for (std::size_t j = i; j < frontierEnd; j = g.expandedEnd()) {
-        g.expand(store, j, std::min(frontierEnd, j + block));
-        for (std::size_t k = j; k < g.expandedEnd(); ++k) {
-          const detail::Expansion& e = g.of(k);
+      for (std::size_t j = first; j < frontierEnd; j = generator.expandedEnd()) {
+        generator.expand(store, j, std::min(frontierEnd, j + kBlock), pool);
+        for (std::size_t k = j; k < generator.expandedEnd(); ++k) {
+          const detail::Expansion& e = generator.of(k);
           const std::size_t local = k - e.firstState;
           for (std::uint32_t n = e.begin[local]; n < e.begin[local + 1] && !cutOff; ++n) cutOff = !store.contains(&e.packed[n * words]);
           cutOff = cutOff || (e.rangeError && e.rangeError->state == k);
-          if (e.enabled[local] == 0) {
-            layout.unpack(store.state(k), values.data());
-            judgeDeadlock(values.data(), k);
-          }
+          if (e.enabled[local] == 0) judgeDeadlock(k);
         }
       }
       if (cutOff) {
@@ -126,62 +139,74 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
       exhausted = !cutOff;
       break;
     }
-    if (i >= generators[current].expandedEnd()) {
-      if (ahead.valid()) {
-        ahead.get();  // the block after the one just consumed, expanded meanwhile
-        current ^= 1;
-      }
-      if (i >= generators[current].expandedEnd()) generators[current].expand(store, i, std::min(store.size(), i + block));
-      // With more than one thread, the next block is expanded while this one is inserted.
-      std::size_t nextFirst = generators[current].expandedEnd(), nextEnd = std::min(store.size(), nextFirst + block);
-      if (limits.threads > 1 && nextEnd > nextFirst && !generators[current].of(i).rangeError) {
-        ahead = std::async(std::launch::async, [&generators, &store, other = current ^ 1, nextFirst, nextEnd] {
-          generators[other].expand(store, nextFirst, nextEnd);
-        });
+
+    // A block never spans two levels: the depth bound falls between blocks.
+    generator.expand(store, first, std::min(levelEnd, first + kBlock), pool);
+    const std::size_t sizeBefore = store.size();
+    bool anyChecked = false;
+    for (std::size_t p = 0; p < invariants; ++p) {
+      checked[p] = isOpen(p) ? 1 : 0;
+      anyChecked = anyChecked || checked[p] != 0;
+    }
+    for (InvariantScratch& own : scratch) std::fill(own.firstViolation.begin(), own.firstViolation.end(), SIZE_MAX);
+    inserter.insert(store, generator.parts(), pool, anyChecked ? detail::BlockInserter::NewStates(checkNewStates) : nullptr);
+    std::vector<std::size_t> violation(invariants, SIZE_MAX);
+    for (const InvariantScratch& own : scratch) {
+      for (std::size_t p = 0; p < own.firstViolation.size(); ++p) violation[p] = std::min(violation[p], own.firstViolation[p]);
+    }
+
+    // The block again, state by state, for what a search expanding one state at a time would do
+    // after each: its verdicts, and where it stops (the states it would not have stored are
+    // dropped).
+    std::size_t stored = sizeBefore;  // the store's size before state i's successors
+    // The store's memory only changes per block: a block that passes the limit stops the search
+    // after its first state.
+    const std::uint64_t bytes = store.bytes();
+    std::size_t i = first;
+    for (const detail::Expansion& e : generator.parts()) {
+      for (; i < e.endState && !stopped; ++i) {
+        if (i > first && open == 0 && !result.properties.empty()) {
+          result.limitReached = "every property is violated";
+          stopped = true;
+          break;
+        }
+        const std::size_t local = i - e.firstState, storedAfter = inserter.sizeAfter(i);
+        result.transitions += e.begin[local + 1] - e.begin[local];
+        for (std::size_t p = 0; p < invariants; ++p) {
+          if (isOpen(p) && violation[p] >= stored && violation[p] < storedAfter) violate(p, violation[p], "invariant");
+        }
+        stored = storedAfter;
+        if (e.rangeError && e.rangeError->state == i) {
+          // The model is wrong, not the mission: say where, with the path that gets there.
+          ++result.transitions;
+          Trace t = traceTo(cm, store, i, sym);
+          t.steps.push_back(e.rangeError->step);
+          t.kind = "range";
+          result.rangeError = std::move(t);
+          result.limitReached = "an update left a variable's declared range";
+          stopped = true;
+        }
+        if (e.enabled[local] == 0) judgeDeadlock(i);
+        bool more = i + 1 < stored;  // a limit reached after the last state changes nothing
+        if (!stopped && more && stored >= limits.maxStates) {
+          result.limitReached = "--max-states " + std::to_string(limits.maxStates) + " reached";
+          stopped = true;
+        }
+        if (!stopped && more && bytes >= limits.maxMemoryBytes) {
+          result.limitReached = "--max-memory " + std::to_string(limits.maxMemoryBytes >> 20) + " MiB reached";
+          stopped = true;
+        }
       }
     }
-    const detail::Expansion& e = generators[current].of(i);
-    const std::size_t local = i - e.firstState, words = layout.words();
-    const std::uint32_t from = e.begin[local], to = e.begin[local + 1];
-    result.transitions += to - from;
-    for (std::uint32_t k = from; k < to && k < from + 8; ++k) store.prefetch(e.hash[k]);
-    for (std::uint32_t k = from; k < to; ++k) {
-      if (k + 8 < to) store.prefetch(e.hash[k + 8]);
-      auto [index, added] = store.insert(&e.packed[k * words], e.hash[k], static_cast<std::uint32_t>(i), e.via[k]);
-      if (added && !cm.invariants().empty()) {
-        layout.unpack(&e.packed[k * words], next.data());
-        checkInvariants(next.data(), index);
-      }
-    }
-    if (e.rangeError && e.rangeError->state == i) {
-      // The model is wrong, not the mission: say where, with the path that gets there.
-      ++result.transitions;
-      Trace t = traceTo(cm, store, i, sym);
-      t.steps.push_back(e.rangeError->step);
-      t.kind = "range";
-      result.rangeError = std::move(t);
-      result.limitReached = "an update left a variable's declared range";
-      stopped = true;
-    }
-    bool enabled = e.enabled[local] != 0;
-    if (!enabled) layout.unpack(store.state(i), values.data());
-    if (!enabled) judgeDeadlock(values.data(), i);
+    if (stopped) inserter.truncate(store, stored);
+    first = i;
     result.peakBytes = std::max(result.peakBytes, store.bytes());
-    if (limits.onProgress && (i & 0x3fffu) == 0) {
+    if (limits.onProgress) {
       double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       if (elapsed >= nextReport) {
         limits.onProgress({store.size(), result.transitions, store.bytes(), result.depth, elapsed});
         nextReport = elapsed + 1.0;
       }
-    }
-    bool more = i + 1 < store.size();  // a limit reached after the last state changes nothing
-    if (!stopped && more && store.size() >= limits.maxStates) {
-      result.limitReached = "--max-states " + std::to_string(limits.maxStates) + " reached";
-      stopped = true;
-    }
-    if (!stopped && more && store.bytes() >= limits.maxMemoryBytes) {
-      result.limitReached = "--max-memory " + std::to_string(limits.maxMemoryBytes >> 20) + " MiB reached";
-      stopped = true;
     }
   }
   result.states = store.size();

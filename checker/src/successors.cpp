@@ -1,22 +1,23 @@
 #include "successors.hpp"
 
 #include <algorithm>
-#include <thread>
+#include <atomic>
+#include <stdexcept>
 
 namespace semo::checker::detail {
 
 SuccessorGenerator::SuccessorGenerator(const CompiledModel& cm, const Symmetry* symmetry, unsigned threads)
     : cm_(cm), useSymmetry_(symmetry != nullptr), workers_(std::max(1u, threads)) {
   for (Worker& w : workers_) {
-    w.values.resize(cm.layout().variables());
-    w.next.resize(cm.layout().variables());
-    w.packed.resize(cm.layout().words());
     if (symmetry != nullptr) w.symmetry = *symmetry;
   }
 }
 
 void SuccessorGenerator::run(Worker& w, const StateStore& store, Expansion& out) const {
   const StateLayout& layout = cm_.layout();
+  w.values.resize(layout.variables());
+  w.next.resize(layout.variables());
+  w.packed.resize(layout.words());
   out.packed.clear();
   out.hash.clear();
   out.via.clear();
@@ -72,22 +73,23 @@ void SuccessorGenerator::run(Worker& w, const StateStore& store, Expansion& out)
   out.begin.push_back(static_cast<std::uint32_t>(out.via.size()));
 }
 
-void SuccessorGenerator::expand(const StateStore& store, std::size_t first, std::size_t end) {
-  const std::size_t n = end - first, t = std::min<std::size_t>(workers_.size(), std::max<std::size_t>(1, n / 256));
-  parts_.resize(t);
-  for (std::size_t k = 0; k < t; ++k) {
-    parts_[k].firstState = first + n * k / t;
-    parts_[k].endState = first + n * (k + 1) / t;
+void SuccessorGenerator::expand(const StateStore& store, std::size_t first, std::size_t end, WorkerPool& pool) {
+  // Runs of at least 256 states (shorter ones cost more to hand out than to expand), at most 16
+  // (more than the threads, so that a thread done early takes another).
+  if (pool.size() > workers_.size()) throw std::logic_error("successor generator: more threads than workers");
+  const std::size_t n = end - first, runs = std::clamp<std::size_t>(n / 256, 1, 16);
+  parts_.resize(runs);
+  for (std::size_t k = 0; k < runs; ++k) {
+    parts_[k].firstState = first + n * k / runs;
+    parts_[k].endState = first + n * (k + 1) / runs;
   }
-  if (t == 1) {
-    run(workers_[0], store, parts_[0]);
-  } else {
-    std::vector<std::thread> helpers;
-    for (std::size_t k = 1; k < t; ++k) helpers.emplace_back([this, k, &store] { run(workers_[k], store, parts_[k]); });
-    run(workers_[0], store, parts_[0]);
-    for (std::thread& h : helpers) h.join();
-  }
-  // A range error ends the block: the parts after it are dropped.
+  std::atomic<std::size_t> nextRun{0};
+  pool.run([&](unsigned thread) {
+    for (std::size_t k = nextRun.fetch_add(1, std::memory_order_relaxed); k < runs; k = nextRun.fetch_add(1, std::memory_order_relaxed)) {
+      run(workers_[thread], store, parts_[k]);
+    }
+  });
+  // A range error ends the block: the runs after it are dropped.
   for (std::size_t k = 0; k < parts_.size(); ++k) {
     if (parts_[k].rangeError) {
       parts_.resize(k + 1);

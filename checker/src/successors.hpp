@@ -1,8 +1,9 @@
 #pragma once
 // Successor generation for the explicit search, on several threads. The search takes the stored
-// states in order; ahead of it, blocks of stored states are expanded in parallel (each thread a
-// contiguous run), and the search then inserts the successors in the same order as a single thread
-// would: the state numbering, the counts and every counterexample are independent of the threads.
+// states in blocks; a block is cut into runs of consecutive states (how many depends on the block,
+// not on the threads), which the threads expand, each taking the next run not taken. The
+// successors are then inserted in the order of the runs, as a single thread would: the state
+// numbering, the counts and every counterexample are independent of the threads.
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -11,11 +12,13 @@
 #include "semo/checker/symmetry.hpp"
 #include "semo/checker/trace.hpp"
 #include "state_store.hpp"
+#include "worker_pool.hpp"
 
 namespace semo::checker::detail {
 
-// The successors of a run of consecutive stored states.
-struct Expansion {
+// The successors of a run of consecutive stored states. One cache line apart: threads fill
+// neighbouring ones at once.
+struct alignas(64) Expansion {
   std::size_t firstState = 0, endState = 0;  // the states [firstState, endState)
   std::vector<std::uint64_t> packed;         // successor k at [k * words, (k + 1) * words)
   std::vector<std::uint64_t> hash;
@@ -35,15 +38,19 @@ class SuccessorGenerator {
  public:
   SuccessorGenerator(const CompiledModel& cm, const Symmetry* symmetry, unsigned threads);
 
-  // Expands the stored states [first, end) (a block), split over the threads.
-  void expand(const StateStore& store, std::size_t first, std::size_t end);
+  // Expands the stored states [first, end) (a block) on the pool's threads; `threads` of the
+  // constructor must be the pool's size.
+  void expand(const StateStore& store, std::size_t first, std::size_t end, WorkerPool& pool);
+  // The runs of the last block, in order; a range error ends the block (no run after it).
+  [[nodiscard]] const std::vector<Expansion>& parts() const { return parts_; }
   // The expansion (of the last block) that holds state i.
   [[nodiscard]] const Expansion& of(std::size_t i) const;
   [[nodiscard]] std::size_t expandedEnd() const { return parts_.empty() ? 0 : parts_.back().endState; }
-  [[nodiscard]] unsigned threads() const { return static_cast<unsigned>(workers_.size()); }
 
  private:
-  struct Worker {
+  // Used by one thread only, which sizes the vectors on first use: allocated by it, from its own
+  // malloc arena, they share no cache line with another thread's.
+  struct alignas(64) Worker {
     std::vector<Value> values, next, scratch;
     std::vector<std::uint64_t> packed;
     std::vector<std::uint32_t> candidates;

@@ -29,7 +29,7 @@ struct SearchLimits {
   // Store one state per orbit of interchangeable robots (checker/symmetry.hpp); the verdicts are
   // the same, the counts are of orbits.
   bool symmetry = true;
-  // Threads that generate successors; results do not depend on it.
+  // Threads that generate and insert successors; results do not depend on it.
   unsigned threads = 1;
   // Called about once a second during a long search (never for searches under a second).
   std::function<void(const Progress&)> onProgress;
