@@ -1,11 +1,5 @@
 #include "semo/checker/symmetry.hpp"
 
-// GCC 12 reports -Wrestrict on libstdc++'s string concatenation when inlined at -O2 (GCC bug
-// 105651, a false positive); this file builds texts by concatenation throughout.
-#if defined(__GNUC__) && !defined(__clang__) && __GNUC__ == 12
-#pragma GCC diagnostic ignored "-Wrestrict"
-#endif
-
 #include <algorithm>
 #include <map>
 #include <optional>
