@@ -22,7 +22,9 @@ std::vector<Verdict> verdicts(const ir::Model& m, bool symmetry, std::uint32_t* 
   for (std::size_t k = 0; k < r.properties.size(); ++k) {
     out.push_back(r.properties[k].verdict);
     // A violation always comes with a concrete lasso, also when it was found up to symmetry.
-    if (r.properties[k].verdict == Verdict::Violated) EXPECT_TRUE(r.properties[k].counterexample.has_value()) << r.notes[k];
+    if (r.properties[k].verdict == Verdict::Violated) {
+      EXPECT_TRUE(r.properties[k].counterexample.has_value()) << r.notes[k];
+    }
   }
   if (reduced != nullptr) *reduced = r.reducedProperties;
   return out;
