@@ -6,143 +6,24 @@
 #include <thread>
 #include <deque>
 #include <stdexcept>
+#include <unordered_set>
 
-#include "semo/checker/buchi.hpp"
-#include "semo/checker/compiled_model.hpp"
-#include "state_store.hpp"
+#include "liveness_product.hpp"
 
 namespace semo::checker {
 
 namespace {
 
-using detail::kNoParent;
-using detail::StateStore;
-using Clock = std::chrono::steady_clock;
-
-// Time passing with no step: allowed where no fair rule is enabled (where one is, staying for ever
-// would be unfair to it, and staying a while changes nothing the properties can see). So a run may
-// end in a state where only unfair rules (loss, crash, the environment) could move.
-constexpr std::uint32_t kStutter = 0xffffffu;
-
-struct Edge {
-  std::uint32_t target;
-  std::uint32_t via;  // rule << 8 | branch, or kStutter << 8
-};
-
-std::uint32_t ruleOf(std::uint32_t via) { return via >> 8; }
-
-// The product of the model with a Büchi automaton, explored breadth-first and kept as a graph.
-class Product {
- public:
-  Product(const CompiledModel& cm, const Buchi& ba) : cm_(cm), ba_(ba), store_(cm.layout().words() + 1) {
-    for (const ir::Expr& atom : ba.atoms) atoms_.emplace_back(atom);
-  }
-
-  // False when a limit stopped the exploration (then `why` says which).
-  bool explore(const SearchLimits& limits, Clock::time_point start, std::uint64_t statesBefore, std::string& why) {
-    const StateLayout& layout = cm_.layout();
-    std::vector<Value> values = cm_.initialValues(), next(values.size());
-    std::vector<std::uint64_t> packed(layout.words() + 1);
-    std::uint64_t initialBits = atomBits(values.data());
-    for (std::uint32_t q = 0; q < ba_.states.size(); ++q) {
-      if (ba_.states[q].initial && labelHolds(q, initialBits)) insert(values.data(), q, kNoParent, 0, packed);
-    }
-    std::vector<std::uint32_t> candidates;
-    // The model successors of the state being expanded: their rules, and their values back to back.
-    std::vector<std::uint32_t> vias;
-    std::vector<Value> successorValues;
-    const std::size_t width = values.size();
-    double nextReport = 1.0;
-    for (std::size_t i = 0; i < store_.size(); ++i) {
-      edgeStart_.push_back(edges_.size());
-      layout.unpack(store_.state(i), values.data());
-      std::uint32_t q = automatonState(i);
-      vias.clear();
-      successorValues.clear();
-      cm_.candidateRules(values.data(), candidates);
-      bool fairEnabled = false;
-      for (std::uint32_t r : candidates) {
-        const CompiledRule& rule = cm_.rules()[r];
-        if (rule.guard.eval(values.data()) == 0) continue;
-        fairEnabled = fairEnabled || cm_.model().rules[r].weaklyFair || cm_.model().rules[r].stronglyFair;
-        for (std::size_t b = 0; b < rule.branches.size(); ++b) {
-          if (!cm_.step(rule.branches[b], values.data(), next.data())) {
-            why = "an update left a variable's declared range (run 'check' for the trace)";
-            return false;
-          }
-          vias.push_back(r << 8 | static_cast<std::uint32_t>(b));
-          successorValues.insert(successorValues.end(), next.begin(), next.end());
-        }
-      }
-      if (!fairEnabled) {
-        vias.push_back(kStutter << 8);
-        successorValues.insert(successorValues.end(), values.begin(), values.end());
-      }
-      for (std::size_t k = 0; k < vias.size(); ++k) {
-        const Value* succ = successorValues.data() + k * width;
-        std::uint64_t bits = atomBits(succ);
-        for (std::uint32_t target : ba_.states[q].successors) {
-          if (!labelHolds(target, bits)) continue;
-          std::uint32_t index = insert(succ, target, static_cast<std::uint32_t>(i), vias[k], packed);
-          edges_.push_back({index, vias[k]});
-        }
-      }
-      if (store_.size() + statesBefore >= limits.maxStates && i + 1 < store_.size()) {
-        why = "--max-states " + std::to_string(limits.maxStates) + " reached";
-        return false;
-      }
-      if (bytes() >= limits.maxMemoryBytes && i + 1 < store_.size()) {
-        why = "--max-memory " + std::to_string(limits.maxMemoryBytes >> 20) + " MiB reached";
-        return false;
-      }
-      if (limits.onProgress && (i & 0x3fffu) == 0) {
-        double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-        if (elapsed >= nextReport) {
-          limits.onProgress({statesBefore + store_.size(), edges_.size(), bytes(), 0, elapsed});
-          nextReport = elapsed + 1.0;
-        }
-      }
-    }
-    edgeStart_.push_back(edges_.size());
-    return true;
-  }
-
-  [[nodiscard]] std::size_t size() const { return store_.size(); }
-  [[nodiscard]] std::size_t edgeCount() const { return edges_.size(); }
-  [[nodiscard]] std::uint64_t bytes() const { return store_.bytes() + edges_.capacity() * sizeof(Edge) + edgeStart_.capacity() * 8; }
-  [[nodiscard]] std::uint32_t automatonState(std::size_t n) const {
-    return static_cast<std::uint32_t>(store_.state(n)[cm_.layout().words()]);
-  }
-  [[nodiscard]] std::uint64_t acceptance(std::size_t n) const { return ba_.states[automatonState(n)].acceptance; }
-  [[nodiscard]] const Edge* edgesBegin(std::size_t n) const { return edges_.data() + edgeStart_[n]; }
-  [[nodiscard]] const Edge* edgesEnd(std::size_t n) const { return edges_.data() + edgeStart_[n + 1]; }
-  [[nodiscard]] const StateStore& store() const { return store_; }
-
- private:
-  std::uint32_t insert(const Value* v, std::uint32_t q, std::uint32_t parent, std::uint32_t via, std::vector<std::uint64_t>& packed) {
-    cm_.layout().pack(v, packed.data());
-    packed.back() = q;
-    return store_.insert(packed.data(), parent, via).first;
-  }
-
-  const CompiledModel& cm_;
-  const Buchi& ba_;
-  StateStore store_;
-  std::vector<Program> atoms_;
-
-  // Which atoms hold in a model state (bit k: Buchi::atoms[k]); a label is then two mask tests.
-  [[nodiscard]] std::uint64_t atomBits(const Value* v) const {
-    std::uint64_t bits = 0;
-    for (std::size_t k = 0; k < atoms_.size(); ++k) bits |= static_cast<std::uint64_t>(atoms_[k].eval(v) != 0) << k;
-    return bits;
-  }
-  [[nodiscard]] bool labelHolds(std::uint32_t q, std::uint64_t bits) const {
-    const BuchiState& s = ba_.states[q];
-    return (bits & s.mustHold) == s.mustHold && (bits & s.mustFail) == 0;
-  }
-  std::vector<std::uint64_t> edgeStart_;
-  std::vector<Edge> edges_;
-};
+using detail::Clock;
+using detail::Edge;
+using detail::compose;
+using detail::inverse;
+using detail::keyOf;
+using detail::kStutter;
+using detail::Permutation;
+using detail::PermutationTable;
+using detail::Product;
+using detail::ruleOf;
 
 // Searches the product for a fair accepting cycle: Tarjan's algorithm for the strongly connected
 // components, then, per component, the acceptance sets and the fairness of every rule; a strongly
@@ -152,7 +33,9 @@ class FairCycleSearch {
  public:
   FairCycleSearch(const CompiledModel& cm, const Buchi& ba, const Product& p)
       : cm_(cm), ba_(ba), p_(p), index_(p.size(), kUnvisited), low_(p.size(), 0), member_(p.size(), 0),
-        enabledCount_(cm.rules().size(), 0), taken_(cm.rules().size(), 0) {
+        enabledCount_(cm.rules().size(), 0), taken_(cm.rules().size(), 0), everywhere_(cm.rules().size(), 0),
+        somewhere_(cm.rules().size(), 0), orbitTaken_(cm.rules().size(), 0), ignored_(cm.rules().size(), 0),
+        orbit_(cm.rules().size(), 0), local_(p.symmetric() ? p.size() : 0, 0) {
     for (std::uint32_t r = 0; r < cm.rules().size(); ++r) {
       if (cm.model().rules[r].weaklyFair || cm.model().rules[r].stronglyFair) fairRules_.push_back(r);
     }
@@ -263,42 +146,112 @@ class FairCycleSearch {
       acc |= p_.acceptance(n);
     }
     if ((acc & ba_.allSets()) != ba_.allSets()) return false;
+    if (p_.symmetric()) liftComponent(component, stamp);
     for (std::uint32_t r : fairRules_) enabledCount_[r] = 0, taken_[r] = 0;
     std::vector<std::uint32_t> on;
-    for (std::uint32_t n : component) {
+    for (std::size_t k = 0; k < component.size(); ++k) {
+      std::uint32_t n = component[k];
       enabled(n, on);
-      for (std::uint32_t r : on) ++enabledCount_[r];
+      for (std::uint32_t r : on) ++enabledCount_[absolute(k, r)];
       for (const Edge* e = p_.edgesBegin(n); e != p_.edgesEnd(n); ++e) {
-        if (member_[e->target] == stamp && ruleOf(e->via) != kStutter) taken_[ruleOf(e->via)] = 1;
+        if (member_[e->target] == stamp && ruleOf(e->via) != kStutter) taken_[absolute(k, ruleOf(e->via))] = 1;
       }
     }
-    std::vector<std::uint32_t> unfairlyIgnored;  // strongly fair, enabled here, never taken here
+    // Per orbit of fair rules (a single rule without symmetry): enabled in every state, in some,
+    // taken somewhere.
+    for (std::uint32_t r : fairRules_) everywhere_[r] = 1, somewhere_[r] = 0, orbitTaken_[r] = 0;
     for (std::uint32_t r : fairRules_) {
-      if (taken_[r] || enabledCount_[r] == 0) continue;
-      // Weak fairness: enabled in every state of the component and never taken -> no fair cycle.
-      if (enabledCount_[r] == component.size()) return false;
-      if (cm_.model().rules[r].stronglyFair) unfairlyIgnored.push_back(r);
+      std::uint32_t o = orbitOf(r);
+      everywhere_[o] = everywhere_[o] && enabledCount_[r] == component.size();
+      somewhere_[o] = somewhere_[o] || enabledCount_[r] != 0;
+      orbitTaken_[o] = orbitTaken_[o] || taken_[r];
     }
-    if (unfairlyIgnored.empty()) {
+    bool anyIgnored = false;  // strongly fair rules enabled here and never taken here
+    for (std::uint32_t r : fairRules_) {
+      std::uint32_t o = orbitOf(r);
+      if (orbitTaken_[o] || !somewhere_[o]) continue;
+      // Weak fairness: enabled in every state of the component and never taken -> no fair cycle.
+      if (everywhere_[o]) return false;
+      if (cm_.model().rules[r].stronglyFair) ignored_[r] = 1, anyIgnored = true;
+    }
+    if (!anyIgnored) {
       found_ = component;
       return true;
     }
     std::vector<std::uint32_t> rest;
     std::uint32_t restStamp = ++stamp_;
-    for (std::uint32_t n : component) {
+    for (std::size_t k = 0; k < component.size(); ++k) {
+      std::uint32_t n = component[k];
       enabled(n, on);
-      bool drop = std::any_of(on.begin(), on.end(), [&](std::uint32_t r) {
-        return std::find(unfairlyIgnored.begin(), unfairlyIgnored.end(), r) != unfairlyIgnored.end();
-      });
+      bool drop = std::any_of(on.begin(), on.end(), [&](std::uint32_t r) { return ignored_[absolute(k, r)] != 0; });
       if (!drop) {
         rest.push_back(n);
         member_[n] = restStamp;
       }
     }
+    for (std::uint32_t r : fairRules_) ignored_[r] = 0;
     for (std::vector<std::uint32_t>& sub : components(rest, restStamp)) {
       if (analyze(sub)) return true;
     }
     return false;
+  }
+
+  // The concrete states a component of the quotient stands for (see checkLiveness's comment): the
+  // k-th state of the component is frame[k] applied to its representative, where frame[0] is the
+  // identity and an edge u -> w that canonicalised with p gives frame[w] = frame[u] p^-1. Edges
+  // whose frames disagree close a cycle that permutes the robots; those permutations generate the
+  // group G whose orbits on the rules are what fairness sees: a rule of the concrete component is
+  // enabled everywhere only if its whole orbit is, in every frame.
+  void liftComponent(const std::vector<std::uint32_t>& component, std::uint32_t stamp) {
+    const PermutationTable& perms = p_.perms();
+    std::vector<Permutation> frame(component.size());
+    std::vector<char> placed(component.size(), 0);
+    for (std::size_t k = 0; k < component.size(); ++k) local_[component[k]] = static_cast<std::uint32_t>(k);
+    frame[0] = perms[0];
+    placed[0] = 1;
+    std::vector<std::uint32_t> queue{0};
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+      std::uint32_t u = queue[head];
+      for (const Edge* e = p_.edgesBegin(component[u]); e != p_.edgesEnd(component[u]); ++e) {
+        if (member_[e->target] != stamp) continue;
+        std::uint32_t w = local_[e->target];
+        if (placed[w]) continue;
+        placed[w] = 1;
+        frame[w] = compose(frame[u], perms.inverseOf(p_.permOf(e)));
+        queue.push_back(w);
+      }
+    }
+    std::unordered_set<std::string> generators;
+    for (std::size_t u = 0; u < component.size(); ++u) {
+      for (const Edge* e = p_.edgesBegin(component[u]); e != p_.edgesEnd(component[u]); ++e) {
+        if (member_[e->target] != stamp) continue;
+        const Permutation& there = frame[local_[e->target]];
+        Permutation arrived = compose(frame[u], perms.inverseOf(p_.permOf(e)));
+        if (arrived != there) generators.insert(keyOf(compose(arrived, inverse(there))));
+      }
+    }
+    frameSwaps_.resize(component.size());
+    for (std::size_t k = 0; k < component.size(); ++k) frameSwaps_[k] = p_.symmetry().decompose(frame[k]);
+    for (std::uint32_t r : fairRules_) orbit_[r] = r;
+    for (const std::string& key : generators) {
+      Permutation g(key.size() / sizeof(std::uint16_t));
+      std::copy(key.begin(), key.end(), reinterpret_cast<char*>(g.data()));
+      Symmetry::Swaps swaps = p_.symmetry().decompose(g);
+      for (std::uint32_t r : fairRules_) {
+        std::uint32_t a = orbitOf(r), b = orbitOf(p_.symmetry().image(r, swaps));
+        if (a != b) orbit_[std::max(a, b)] = std::min(a, b);
+      }
+    }
+  }
+
+  // Rule r of the k-th state of the component under analysis, named in the frame of the first.
+  [[nodiscard]] std::uint32_t absolute(std::size_t k, std::uint32_t r) const {
+    return p_.symmetric() ? p_.symmetry().image(r, frameSwaps_[k]) : r;
+  }
+  std::uint32_t orbitOf(std::uint32_t r) {
+    if (!p_.symmetric()) return r;
+    while (orbit_[r] != r) r = orbit_[r] = orbit_[orbit_[r]];
+    return r;
   }
 
   const CompiledModel& cm_;
@@ -307,7 +260,9 @@ class FairCycleSearch {
   std::vector<std::uint32_t> index_, low_, member_;
   std::vector<char> onStack_;
   std::vector<std::uint32_t> enabledCount_;
-  std::vector<char> taken_;
+  std::vector<char> taken_, everywhere_, somewhere_, orbitTaken_, ignored_;
+  std::vector<std::uint32_t> orbit_, local_;        // union-find over the rules; a state's place in its component
+  std::vector<Symmetry::Swaps> frameSwaps_;
   std::vector<std::uint32_t> fairRules_;
   std::uint32_t stamp_ = 0;
   std::vector<std::uint32_t> found_;
@@ -432,10 +387,16 @@ struct Outcome {
   std::uint64_t states = 0, transitions = 0;
   bool whole = true;
   std::string why;
+  bool reduced = false;  // searched up to symmetry
+  std::string note;
 };
 
-Outcome checkProperty(const CompiledModel& cm, const ir::Property& prop, const SearchLimits& limits, Clock::time_point start) {
-  Outcome out{{prop.name, prop.origin, Verdict::Unknown, {}}, 0, 0, true, {}};
+// With `symmetry` (non-null only when every atom of the property is invariant), the product of
+// the quotient is searched; it decides the property exactly (see FairCycleSearch::liftComponent).
+// A violation found there is searched again without symmetry for a concrete lasso.
+Outcome checkProperty(const CompiledModel& cm, const ir::Property& prop, const SearchLimits& limits, Clock::time_point start,
+                      const Symmetry* symmetry) {
+  Outcome out{{prop.name, prop.origin, Verdict::Unknown, {}}, 0, 0, true, {}, false, {}};
   Buchi ba;
   try {
     ba = buildBuchi(ir::Ltl::unary(ir::Ltl::Kind::Not, prop.formula));
@@ -444,7 +405,12 @@ Outcome checkProperty(const CompiledModel& cm, const ir::Property& prop, const S
     out.why = prop.name + ": " + e.what();
     return out;
   }
-  Product product(cm, ba);
+  if (symmetry != nullptr &&
+      !std::all_of(ba.atoms.begin(), ba.atoms.end(), [&](const ir::Expr& a) { return symmetry->invariant(a); })) {
+    symmetry = nullptr;
+  }
+  out.reduced = symmetry != nullptr;
+  Product product(cm, ba, symmetry);
   out.whole = product.explore(limits, start, 0, out.why);
   out.states = product.size();
   out.transitions = product.edgeCount();
@@ -453,6 +419,20 @@ Outcome checkProperty(const CompiledModel& cm, const ir::Property& prop, const S
   std::vector<std::uint32_t> cycle = search.find();
   if (cycle.empty()) {
     out.property.verdict = Verdict::Proven;
+    return out;
+  }
+  if (symmetry != nullptr) {
+    Outcome concrete = checkProperty(cm, prop, limits, start, nullptr);
+    concrete.states += out.states;
+    concrete.transitions += out.transitions;
+    concrete.reduced = true;
+    if (concrete.property.verdict == Verdict::Violated) return concrete;
+    // The quotient's verdict is exact; only the lasso is missing.
+    out.property.verdict = Verdict::Violated;
+    out.note = "violated up to symmetry; no concrete lasso: ";
+    out.note += concrete.whole ? "none found" : concrete.why;
+    out.states = concrete.states;
+    out.transitions = concrete.transitions;
     return out;
   }
   std::uint32_t entry = *std::min_element(cycle.begin(), cycle.end());  // breadth-first: the shortest way in
@@ -469,6 +449,8 @@ Outcome checkProperty(const CompiledModel& cm, const ir::Property& prop, const S
 LivenessResult checkLiveness(const ir::Model& model, const SearchLimits& limits) {
   auto start = Clock::now();
   CompiledModel cm(model);
+  const Symmetry symmetry = limits.symmetry ? Symmetry::find(model) : Symmetry();
+  const Symmetry* reduce = symmetry.empty() ? nullptr : &symmetry;
   LivenessResult result;
   // The properties' products are independent: up to `threads` are searched at once, each within
   // --max-states and its share of --max-memory; only the first worker reports progress.
@@ -480,7 +462,7 @@ LivenessResult checkLiveness(const ir::Model& model, const SearchLimits& limits)
     SearchLimits mine = limits;
     mine.maxMemoryBytes = limits.maxMemoryBytes / std::max<std::size_t>(1, workers);
     if (worker != 0) mine.onProgress = nullptr;
-    for (std::size_t k = next++; k < n; k = next++) outcomes[k] = checkProperty(cm, model.properties[k], mine, start);
+    for (std::size_t k = next++; k < n; k = next++) outcomes[k] = checkProperty(cm, model.properties[k], mine, start, reduce);
   };
   std::vector<std::thread> helpers;
   for (std::size_t w = 1; w < workers; ++w) helpers.emplace_back(work, w);
@@ -490,18 +472,20 @@ LivenessResult checkLiveness(const ir::Model& model, const SearchLimits& limits)
   if (workers > 1) {
     for (std::size_t k = 0; k < n; ++k) {
       if (!outcomes[k].whole && outcomes[k].why.rfind("--max-memory", 0) == 0) {
-        outcomes[k] = checkProperty(cm, model.properties[k], limits, start);
+        outcomes[k] = checkProperty(cm, model.properties[k], limits, start, reduce);
       }
     }
   }
   for (Outcome& o : outcomes) {
     result.states += o.states;
     result.transitions += o.transitions;
+    result.reducedProperties += o.reduced ? 1 : 0;
     if (!o.whole) {
       result.complete = false;
       if (result.limitReached.empty()) result.limitReached = o.why;
     }
     result.properties.push_back(std::move(o.property));
+    result.notes.push_back(std::move(o.note));
   }
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;

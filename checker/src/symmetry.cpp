@@ -1,11 +1,5 @@
 #include "semo/checker/symmetry.hpp"
 
-// GCC 12 reports -Wrestrict on libstdc++'s string concatenation when inlined at -O2 (GCC bug
-// 105651, a false positive); this file builds texts by concatenation throughout.
-#if defined(__GNUC__) && !defined(__clang__) && __GNUC__ == 12
-#pragma GCC diagnostic ignored "-Wrestrict"
-#endif
-
 #include <algorithm>
 #include <map>
 #include <optional>
@@ -136,6 +130,19 @@ class Finder {
     VarMap identity(m.variables.size());
     for (ir::VarId v = 0; v < identity.size(); ++v) identity[v] = v;
     original_ = text(m, identity);
+    for (std::uint32_t r = 0; r < m.rules.size(); ++r) ruleIndex_[canon(m.rules[r], identity)].push_back(r);
+  }
+
+  // What a verified swap does to the rules: rule r becomes rules[r]. Rules with the same text are
+  // paired off in order, so the map is a bijection.
+  std::vector<std::uint32_t> ruleMap(const VarMap& map) const {
+    std::unordered_map<std::string, std::size_t> used;
+    std::vector<std::uint32_t> out(m_.rules.size());
+    for (std::uint32_t r = 0; r < m_.rules.size(); ++r) {
+      std::string t = canon(m_.rules[r], map);
+      out[r] = ruleIndex_.at(t).at(used[t]++);
+    }
+    return out;
   }
 
   // The swap of robots a and b as a permutation of the variables, if every variable has a twin.
@@ -195,6 +202,7 @@ class Finder {
   std::unordered_map<std::string, ir::VarId> byName_;
   std::unordered_map<std::string, std::int32_t> robotIndex_;
   ModelText original_;
+  std::unordered_map<std::string, std::vector<std::uint32_t>> ruleIndex_;  // by text: the rules
 };
 
 // Robots whose variables look alike (the same names after the robot's own, the same ranges).
@@ -227,6 +235,7 @@ Symmetry Symmetry::find(const ir::Model& model) {
   Symmetry s;
   if (model.robots.size() < 2) return s;
   Finder f(model);
+  std::vector<Swap> swaps;
   for (const std::vector<std::int32_t>& candidates : lookalikes(model, f)) {
     // Star transpositions (first r) generate the symmetric group of a class: a robot joins the
     // first class whose first member it can be swapped with.
@@ -246,16 +255,21 @@ Symmetry Symmetry::find(const ir::Model& model) {
       if (robots.size() < 2 || f.namesTwo(robots)) continue;
       Class c;
       c.robots = robots;
+      c.firstSlot = s.slots_;
+      c.firstSwap = swaps.size();
       c.blocks.push_back(f.varsOf(robots.front()));
       for (std::size_t i = 1; i < robots.size(); ++i) {
         VarMap map = *f.swap(robots.front(), robots[i]);
         std::vector<ir::VarId> block;
         for (ir::VarId v : c.blocks.front()) block.push_back(map[v]);
         c.blocks.push_back(std::move(block));
+        swaps.push_back({map, f.ruleMap(map)});
       }
+      s.slots_ += robots.size();
       s.classes_.push_back(std::move(c));
     }
   }
+  s.swaps_ = std::make_shared<const std::vector<Swap>>(std::move(swaps));
   return s;
 }
 
@@ -273,7 +287,15 @@ std::vector<std::string> Symmetry::describe(const ir::Model& model) const {
   return out;
 }
 
-void Symmetry::canonicalize(Value* values) const {
+void Symmetry::canonicalize(Value* values) const { canonicalize(values, nullptr); }
+
+void Symmetry::canonicalize(Value* values, Permutation& moved) const {
+  moved.resize(slots_);
+  for (std::size_t i = 0; i < slots_; ++i) moved[i] = static_cast<std::uint16_t>(i);
+  canonicalize(values, &moved);
+}
+
+void Symmetry::canonicalize(Value* values, Permutation* moved) const {
   for (const Class& c : classes_) {
     const std::size_t k = c.robots.size(), width = c.blocks.front().size();
     order_.resize(k);
@@ -294,7 +316,50 @@ void Symmetry::canonicalize(Value* values) const {
     for (std::size_t i = 0; i < k; ++i) {
       for (std::size_t j = 0; j < width; ++j) values[c.blocks[i][j]] = scratch_[i * width + j];
     }
+    // The robot found at position order_[i] now sits at position i.
+    if (moved != nullptr) {
+      for (std::size_t i = 0; i < k; ++i) (*moved)[c.firstSlot + order_[i]] = static_cast<std::uint16_t>(c.firstSlot + i);
+    }
   }
+}
+
+Symmetry::Swaps Symmetry::decompose(const Permutation& p) const {
+  // A cycle a1 -> a2 -> ... -> am is the swaps (a1 a2), (a1 a3), ..., (a1 am), applied in that
+  // order; a swap of two positions other than the first is (0 a)(0 b)(0 a).
+  Swaps out;
+  std::vector<char> done(p.size(), 0);
+  for (const Class& c : classes_) {
+    auto star = [&](std::size_t position) { out.push_back(static_cast<std::uint32_t>(c.firstSwap + position - 1)); };
+    auto transpose = [&](std::size_t a, std::size_t b) {
+      if (a == 0) star(b);
+      else if (b == 0) star(a);
+      else star(a), star(b), star(a);
+    };
+    for (std::size_t i = 0; i < c.robots.size(); ++i) {
+      std::size_t start = c.firstSlot + i;
+      if (done[start]) continue;
+      done[start] = 1;
+      for (std::size_t next = p[start]; next != start; next = p[next]) {
+        done[next] = 1;
+        transpose(start - c.firstSlot, next - c.firstSlot);
+      }
+    }
+  }
+  return out;
+}
+
+std::uint32_t Symmetry::image(std::uint32_t rule, const Swaps& swaps) const {
+  for (std::uint32_t s : swaps) rule = (*swaps_)[s].rules[rule];
+  return rule;
+}
+
+bool Symmetry::invariant(const ir::Expr& e) const {
+  if (classes_.empty()) return true;
+  const std::vector<ir::VarId>& any = swaps_->front().variables;
+  VarMap identity(any.size());
+  for (ir::VarId v = 0; v < identity.size(); ++v) identity[v] = v;
+  const std::string original = canon(e, identity);
+  return std::all_of(swaps_->begin(), swaps_->end(), [&](const Swap& s) { return canon(e, s.variables) == original; });
 }
 
 }  // namespace semo::checker

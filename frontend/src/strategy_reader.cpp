@@ -381,7 +381,7 @@ class StrategyReader {
   }
 
   void readLeaderSelection(const XMLElement* e, Strategy& s) {
-    xml_.checkAttributes(e, {"service", "algorithm", "heartbeat", "timeout"});
+    xml_.checkAttributes(e, {"service", "algorithm", "reelection", "heartbeat", "timeout"});
     xml_.checkChildren(e, {});
     auto service = xml_.required(e, "service");
     if (!service) return;
@@ -400,6 +400,18 @@ class StrategyReader {
       ls.algorithm = LeaderSelection::Algorithm::Bully;
     } else if (algorithm != "lowest-id") {
       xml_.attributeError(e, "algorithm", "leader selection algorithm must be 'bully' or 'lowest-id', not '" + algorithm + "'");
+    }
+    std::string reelection = e->Attribute("reelection") ? e->Attribute("reelection") : "timeout";
+    if (reelection == "formation") {
+      ls.reelection = LeaderSelection::Reelection::Formation;
+      for (const char* timing : {"heartbeat", "timeout"}) {
+        if (e->Attribute(timing)) {
+          xml_.attributeError(e, timing, std::string("'") + timing + "' applies to reelection=\"timeout\" only: with \"formation\" " +
+                                             "no heartbeats are sent and a new leader is chosen when the group forms again");
+        }
+      }
+    } else if (reelection != "timeout") {
+      xml_.attributeError(e, "reelection", "reelection must be 'timeout' or 'formation', not '" + reelection + "'");
     }
     if (auto hb = xml_.durationMicros(e, "heartbeat")) ls.heartbeatMillis = *hb / 1000;
     if (auto to = xml_.durationMicros(e, "timeout")) ls.timeoutMillis = *to / 1000;

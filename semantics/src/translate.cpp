@@ -202,8 +202,9 @@ void Translator::variables() {
     leaderBlocks_.push_back(b);
     Index team = m_.groupBlocks[b].team;
     std::string tag = m_.services[m_.groupBlocks[b].service].name + "." + std::to_string(b);
-    // Failure detection only matters when a leader can fail or its heartbeats can be lost.
-    bool detect = crashBudget(team) > 0 || loseHeartbeats_;
+    // Failure detection only matters when a leader can fail or its heartbeats can be lost (and is
+    // absent when the strategy re-elects only when the group forms).
+    bool detect = m_.groupBlocks[b].leader.detectsFailures && (crashBudget(team) > 0 || loseHeartbeats_);
     for (Index c : candidates(b)) {
       auto robot = static_cast<std::int32_t>(c);
       const std::string& name = m_.robots[c].name;
@@ -212,7 +213,7 @@ void Translator::variables() {
         vars_[c].silence[b] = addVar(name + ".silence." + tag, 0, timeoutPeriods(b), 0, robot);
         out_.variables.back().isBool = false;
       }
-      if (loseHeartbeats_) {
+      if (detect && loseHeartbeats_) {
         vars_[c].lossRun[b] = addVar(name + ".lost." + tag, 0, static_cast<std::int32_t>(m_.assumptions.lossBurst), 0, robot);
         out_.variables.back().isBool = false;
       }

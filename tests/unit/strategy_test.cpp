@@ -128,5 +128,12 @@ TEST(Strategy, TimeoutNotLongerThanHeartbeatIsAWarning) {
   EXPECT_NE(r->diags.diagnostics().front().message.find("suspected between two heartbeats"), std::string::npos);
 }
 
+TEST(Strategy, ReelectionOnTimeoutByDefaultOrAtFormation) {
+  auto r = read(R"(<strategy><leader-selection service="T.P.S"/><leader-selection service="T.P.F" reelection="formation"/></strategy>)");
+  ASSERT_FALSE(r->diags.hasErrors());
+  EXPECT_EQ(r->strategy.leaderSelection("T", "P", "S")->reelection, strategy::LeaderSelection::Reelection::Timeout);
+  EXPECT_EQ(r->strategy.leaderSelection("T", "P", "F")->reelection, strategy::LeaderSelection::Reelection::Formation);
+}
+
 }  // namespace
 }  // namespace semo

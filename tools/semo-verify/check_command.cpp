@@ -141,8 +141,10 @@ int runCheck(const CheckOptions& options) {
       jp["type"] = "safety";
       props.push_back(jp);
     }
-    for (const checker::PropertyResult& p : live.properties) {
+    for (std::size_t k = 0; k < live.properties.size(); ++k) {
+      const checker::PropertyResult& p = live.properties[k];
       nlohmann::json jp = {{"name", p.name}, {"verdict", checker::verdictName(p.verdict)}, {"origin", p.origin}, {"type", "liveness"}};
+      if (k < live.notes.size() && !live.notes[k].empty()) jp["note"] = live.notes[k];
       if (p.counterexample) jp["counterexample"] = nlohmann::json::parse(checker::traceToJson(*model, *p.counterexample));
       props.push_back(jp);
     }
@@ -157,7 +159,8 @@ int runCheck(const CheckOptions& options) {
     if (r.rangeError) root["modelError"] = nlohmann::json::parse(checker::traceToJson(*model, *r.rangeError));
     if (!model->properties.empty()) {
       root["liveness"] = {{"productStates", live.states}, {"productTransitions", live.transitions},
-                          {"complete", live.complete}, {"seconds", live.seconds}};
+                          {"complete", live.complete}, {"seconds", live.seconds},
+                          {"propertiesUpToSymmetry", live.reducedProperties}};
       if (!live.limitReached.empty()) root["liveness"]["limit"] = live.limitReached;
     }
     std::cout << root.dump(2) << "\n";
@@ -191,16 +194,22 @@ int runCheck(const CheckOptions& options) {
     if (!liveSkipped.empty()) {
       std::cout << liveSkipped << "\n";
     } else {
-      std::cout << live.states << " product states, " << live.transitions << " transitions ("
-                << (live.complete ? "complete" : "PARTIAL: " + live.limitReached) << "), " << live.seconds << " s\n";
+      std::cout << live.states << " product states, " << live.transitions << " transitions";
+      if (live.reducedProperties > 0) {
+        std::cout << " (up to symmetry for " << live.reducedProperties << " of " << live.properties.size() << " properties)";
+      }
+      std::cout << " (" << (live.complete ? "complete" : "PARTIAL: " + live.limitReached) << "), " << live.seconds << " s\n";
       std::cout << "fairness:    " << fairnessLine(*model) << "\n";
     }
-    for (const checker::PropertyResult& p : live.properties) {
+    for (std::size_t k = 0; k < live.properties.size(); ++k) {
+      const checker::PropertyResult& p = live.properties[k];
       std::cout << "  " << checker::verdictName(p.verdict) << "  " << p.name;
       if (p.verdict == checker::Verdict::Proven) {
         std::cout << "  (every fair run, under the assumptions above)";
       } else if (p.verdict == checker::Verdict::Unknown && liveSkipped.empty()) {
         std::cout << "  (no violation found in the part explored; the search was not complete)";
+      } else if (k < live.notes.size() && !live.notes[k].empty()) {
+        std::cout << "  (" << live.notes[k] << ")";
       } else if (p.counterexample) {
         const checker::Trace& t = *p.counterexample;
         std::cout << "  (lasso of " << t.steps.size() << (t.steps.size() == 1 ? " step" : " steps") << " below, ";

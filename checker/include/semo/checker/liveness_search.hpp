@@ -5,6 +5,14 @@
 // then a loop that repeats for ever). Fairness: a weakly fair rule enabled for ever is taken
 // eventually; a strongly fair rule enabled again and again is taken again and again (specs/ir.md).
 // "Proven" needs the whole product explored; a limit leaves the property "unknown".
+//
+// Symmetry: a property whose atoms every permutation of the interchangeable robots leaves unchanged
+// is decided on the product of the quotient (one state per orbit). Fairness is per rule, and a
+// rule of one robot is another robot's rule in a permuted state, so each component of the quotient
+// is lifted back: the permutations along its cycles generate a group, and a rule counts as enabled
+// everywhere (or taken) in the concrete component when its orbit under that group does (in the spirit
+// of Emerson and Sistla's annotated quotient structures, kept to what the fairness check needs). The verdict is exact;
+// a lasso comes from the concrete product.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -15,8 +23,10 @@ namespace semo::checker {
 
 struct LivenessResult {
   std::vector<PropertyResult> properties;  // Model::properties in order
+  std::vector<std::string> notes;          // per property: what its verdict needs said, or empty
   std::uint64_t states = 0;       // product states, summed over the properties
   std::uint64_t transitions = 0;  // product transitions, summed
+  std::uint32_t reducedProperties = 0;  // searched up to symmetry (SearchLimits::symmetry)
   bool complete = true;           // every product explored whole
   std::string limitReached;
   double seconds = 0;

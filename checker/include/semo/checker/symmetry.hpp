@@ -5,6 +5,12 @@
 // translation for this: it checks each swap on the IR itself (with commutative operators
 // compared in any order), and swaps that generate the whole symmetric group of a class suffice.
 // The search then stores one state per orbit: the robots of a class sorted by their values.
+//
+// The liveness engine also needs to know *how* a state was permuted, and what the rules become
+// under a permutation (fairness is per rule): `canonicalize` can report the permutation, and
+// `image` maps a rule through one, as a product of the verified swaps.
+#include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -25,12 +31,37 @@ class Symmetry {
   // Rewrites `values` into the representative of its orbit.
   void canonicalize(Value* values) const;
 
+  // Slots number the robots of the classes, class by class. A permutation maps each slot to the
+  // slot its robot's values move to.
+  using Permutation = std::vector<std::uint16_t>;
+  // The swaps (generator numbers) whose product, first applied first, is a permutation.
+  using Swaps = std::vector<std::uint32_t>;
+  [[nodiscard]] std::size_t slots() const { return slots_; }
+  // As above, and `moved` is the permutation that was applied.
+  void canonicalize(Value* values, Permutation& moved) const;
+  [[nodiscard]] Swaps decompose(const Permutation& p) const;
+  // The rule `rule` becomes when the robots are permuted by the product of `swaps`.
+  [[nodiscard]] std::uint32_t image(std::uint32_t rule, const Swaps& swaps) const;
+  // Whether every permutation leaves the value of `e` unchanged (e.g. a property's atom).
+  [[nodiscard]] bool invariant(const ir::Expr& e) const;
+
  private:
   struct Class {
     std::vector<std::int32_t> robots;
     std::vector<std::vector<ir::VarId>> blocks;  // blocks[i][j]: the j-th variable of robots[i]
+    std::size_t firstSlot = 0, firstSwap = 0;
   };
+  // Per generator (the swap of a class's first robot with its i-th, i >= 1): what it does to the
+  // variables and to the rules. Shared: the engines copy a Symmetry per thread.
+  struct Swap {
+    std::vector<ir::VarId> variables;
+    std::vector<std::uint32_t> rules;
+  };
+  void canonicalize(Value* values, Permutation* moved) const;
+
   std::vector<Class> classes_;
+  std::shared_ptr<const std::vector<Swap>> swaps_;
+  std::size_t slots_ = 0;
   mutable std::vector<Value> scratch_;
   mutable std::vector<std::size_t> order_;
 };

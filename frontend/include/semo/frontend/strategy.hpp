@@ -106,6 +106,10 @@ struct LeaderSelection {
   enum class Algorithm { Bully, LowestId };
   std::string team, plan, service;  // service="Team.Plan.Service"
   Algorithm algorithm = Algorithm::LowestId;
+  // When a failed leader is replaced: after the failure timeout, by the members that wait for its
+  // heartbeats (`timeout`), or only when the group forms again (`formation`, the paper's scheme).
+  enum class Reelection { Timeout, Formation };
+  Reelection reelection = Reelection::Timeout;
   std::int64_t heartbeatMillis = 1000;
   std::int64_t timeoutMillis = 3000;
   SourceRange at;

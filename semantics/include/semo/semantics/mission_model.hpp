@@ -95,6 +95,7 @@ struct LeaderConfig {
   std::int64_t heartbeatMillis = 1000;
   std::int64_t timeoutMillis = 3000;
   bool fromStrategy = false;
+  bool detectsFailures = true;  // false: a new leader only when the group forms (reelection="formation")
 };
 
 struct GroupBlock {
