@@ -3,7 +3,8 @@
 # in specs/examples/swarm), safety search with and without symmetry reduction, and SPIN on the
 # exported Promela of the same instances (pan -DNOREDUCE -DSAFETY, every state stored, as semo
 # without symmetry). Prints states, seconds, states/s, bytes per state and peak memory for each,
-# and the semo/SPIN ratios on the same model (without symmetry).
+# the semo/SPIN ratios on the same model (without symmetry), and the time of the whole check
+# (safety and liveness) with symmetry.
 #
 #   bench/swarm_bench.sh [BUILD_DIR] [N_MIN] [N_MAX]      (default: build 3 10)
 # Needs a release build (tools/setup.sh run) and spin + gcc. Instances that exceed MAX_STATES
@@ -60,5 +61,11 @@ for n in $(seq "$nmin" "$nmax"); do
   spin_bps="$(python3 -c "print(round($spin_mib*1048576/$spin_states))")"
   row+=$(printf ' | %10s %8.2f %10.0f %5s %8.1f' "$spin_states" "$spin_secs" "$spin_sps" "$spin_bps" "$spin_mib")
   row+=$(printf ' | %5.2fx %6.2fx' "$(python3 -c "print($semo_sps/$spin_sps)")" "$(python3 -c "print($semo_bps/$spin_bps)")")
-  echo "$row (vector $vector B)"
+  # The whole check with symmetry: safety and the three liveness properties (mode_agreement,
+  # knowledge_convergence, all_turn_back), as a user runs it.
+  full_start=$(date +%s.%N)
+  full_out="$(timeout "$limit" "$exe" check "$work/swarm_n.semo" --strategy "$work/strategy.xml" --json 2>/dev/null || true)"
+  full_secs="$(python3 -c "print(round($(date +%s.%N)-$full_start, 2))")"
+  full_verdicts="$(echo "$full_out" | python3 -c 'import json,sys; d=json.load(sys.stdin); print(",".join(sorted({p["verdict"] for p in d["properties"]})), d["exitCode"])' 2>/dev/null || echo "no result")"
+  echo "$row (vector $vector B) | full check with symmetry: ${full_secs} s, verdicts ${full_verdicts}"
 done
