@@ -91,6 +91,7 @@ bool writeAtomically(const std::string& path, const std::string& text) {
 int runCheck(const CheckOptions& options) {
   std::optional<ir::Model> model = buildModel(options.model);
   if (!model) return kBadInput;
+  if (options.engine == "smt") return runCheckSmt(options, *model);
   checker::SearchLimits limits;
   limits.maxStates = options.maxStates;
   limits.maxMemoryBytes = options.maxMemoryMiB << 20;

@@ -5,6 +5,8 @@
 #include <optional>
 #include <string>
 
+#include "semo/semantics/ir.hpp"
+
 namespace semo::cli {
 
 enum ExitCode { kOk = 0, kViolated = 1, kBadInput = 2, kLimit = 3 };
@@ -39,6 +41,7 @@ struct CheckOptions {
   unsigned threads = 0;  // 0: one per core
   std::uint64_t maxMemoryMiB = 8192;
   bool json = false;
+  std::string engine = "explicit";
 };
 
 struct ExportOptions {
@@ -50,6 +53,8 @@ struct ExportOptions {
 
 int runParse(const ParseOptions& options);
 int runCheck(const CheckOptions& options);
+// `check --engine smt` on a model already built (check_smt.cpp).
+int runCheckSmt(const CheckOptions& options, const ir::Model& model);
 int runExport(const ExportOptions& options);
 int runLint(const LintOptions& options);
 

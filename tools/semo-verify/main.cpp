@@ -48,11 +48,15 @@ int main(int argc, char** argv) {
   checkCmd->add_option("--max-depth", check.maxDepth,
                        "Explore only paths of at most this many steps (bounded search: exit 3 unless nothing lies beyond)");
   checkCmd->add_flag_callback("--no-symmetry", [&check] { check.symmetry = false; },
-                              "Store every state, not one per ordering of interchangeable robots (safety search)");
+                              "Store every state, not one per ordering of interchangeable robots (both searches)");
   checkCmd->add_option("--threads", check.threads, "Threads for the searches (default: one per core; the results do not depend on it)")
       ->check(CLI::Range(1u, 256u));
   checkCmd->add_flag("--safety-only", check.safetyOnly, "Check the invariants and deadlock freedom only, not the LTL properties");
   checkCmd->add_flag("--json", check.json, "Print the verdicts and counterexamples as JSON (specs/trace.md)");
+  checkCmd->add_option("--engine", check.engine,
+                       "explicit: state-space search (default); smt: Z3, bounded model checking to --max-depth (default 20) "
+                       "and k-induction, safety properties only")
+      ->check(CLI::IsMember({"explicit", "smt"}));
 
   semo::cli::ExportOptions exportOptions;
   CLI::App* exportCmd = app.add_subcommand("export", "Write the mission's formal model as IR text or Promela");

@@ -1,0 +1,194 @@
+#include "semo/checker/smt_search.hpp"
+
+#include <chrono>
+#include <optional>
+
+#include "smt_encoding.hpp"
+
+namespace semo::checker {
+
+namespace {
+
+using detail::SmtEncoding;
+using Clock = std::chrono::steady_clock;
+
+// The safety properties in the explicit engine's order: the invariants, then deadlock freedom.
+struct Target {
+  std::string name, origin;
+  const ir::Expr* invariant = nullptr;  // null: deadlock freedom
+};
+
+std::vector<Target> targets(const ir::Model& m) {
+  std::vector<Target> out;
+  for (const ir::Invariant& inv : m.invariants) out.push_back({inv.name, inv.origin, &inv.holds});
+  if (m.validEnd) out.push_back({"deadlock_freedom", "", nullptr});
+  return out;
+}
+
+// The property as a state predicate at step k.
+z3::expr good(SmtEncoding& enc, const ir::Model& m, const Target& t, std::size_t k) {
+  if (t.invariant != nullptr) return enc.holds(*t.invariant, k);
+  return enc.enabled(k) || enc.holds(*m.validEnd, k);
+}
+
+std::int32_t intValue(const z3::model& model, const z3::expr& e) {
+  return static_cast<std::int32_t>(model.eval(e, true).get_numeral_int64());
+}
+
+// The path s_0 .. s_depth of a satisfying assignment, as the explicit engine prints it.
+Trace traceOf(const z3::model& model, SmtEncoding& enc, const ir::Model& m, std::size_t depth) {
+  Trace t;
+  const std::size_t n = m.variables.size();
+  for (std::size_t v = 0; v < n; ++v) t.initial.push_back(intValue(model, enc.state(0)[static_cast<int>(v)]));
+  for (std::size_t k = 0; k < depth; ++k) {
+    auto a = static_cast<std::size_t>(intValue(model, enc.action(k)));
+    Step step{enc.actions()[a].rule, enc.actions()[a].branch, {}};
+    for (std::size_t v = 0; v < n; ++v) {
+      std::int32_t before = intValue(model, enc.state(k)[static_cast<int>(v)]);
+      std::int32_t after = intValue(model, enc.state(k + 1)[static_cast<int>(v)]);
+      if (before != after) step.changes.push_back({static_cast<ir::VarId>(v), before, after});
+    }
+    t.steps.push_back(std::move(step));
+  }
+  return t;
+}
+
+z3::check_result checkWith(z3::solver& s, const z3::expr& extra) {
+  s.push();
+  s.add(extra);
+  z3::check_result r = s.check();
+  if (r != z3::sat) s.pop();  // on sat the caller reads the model first, then pops
+  return r;
+}
+
+}  // namespace
+
+SmtResult checkSafetySmt(const ir::Model& model, const SmtOptions& options) {
+  auto start = Clock::now();
+  SmtResult out;
+  SearchResult& result = out.search;
+  const std::vector<Target> props = targets(model);
+  for (const Target& t : props) result.properties.push_back({t.name, t.origin, Verdict::Unknown, {}});
+  out.inductionDepth.assign(props.size(), 0);
+
+  z3::context ctx;
+  z3::params params(ctx);
+  if (options.timeoutMs != 0) params.set("timeout", options.timeoutMs);
+  SmtEncoding enc(ctx, model);
+  z3::solver bmc(ctx);
+  bmc.set(params);
+  bmc.add(enc.initial(0));
+  std::vector<std::size_t> open;
+  for (std::size_t j = 0; j < props.size(); ++j) open.push_back(j);
+  bool complete = false, limited = false;
+  std::uint32_t depth = 0;
+  for (;; ++depth) {
+    if (depth > 0) {
+      // An update that leaves a declared range is a modelling error, as in the explicit engine.
+      z3::check_result r = checkWith(bmc, !enc.inRange(depth));
+      if (r == z3::sat) {
+        Trace t = traceOf(bmc.get_model(), enc, model, depth);
+        bmc.pop();
+        t.kind = "range";
+        t.property = "variable ranges";
+        result.rangeError = std::move(t);
+        result.limitReached = "an update left a variable's declared range";
+        break;
+      }
+      bmc.add(enc.inRange(depth));
+      // No path of `depth` steps at all: every reachable state lies within depth - 1 steps.
+      z3::check_result any = bmc.check();
+      if (any == z3::unsat) {
+        complete = true;
+        --depth;
+        break;
+      }
+      if (any == z3::unknown) limited = true;
+    }
+    for (auto it = open.begin(); it != open.end();) {
+      z3::check_result r = checkWith(bmc, !good(enc, model, props[*it], depth));
+      if (r == z3::sat) {
+        Trace t = traceOf(bmc.get_model(), enc, model, depth);
+        bmc.pop();
+        t.property = props[*it].name;
+        t.kind = props[*it].invariant != nullptr ? "invariant" : "deadlock";
+        result.properties[*it].verdict = Verdict::Violated;
+        result.properties[*it].counterexample = std::move(t);
+        it = open.erase(it);
+      } else {
+        if (r == z3::unknown) limited = true;
+        ++it;
+      }
+    }
+    if (open.empty() || depth >= options.maxDepth) break;
+    bmc.add(enc.transition(depth));
+  }
+  out.bmcDepth = depth;
+  result.depth = depth;
+  if (complete && !limited) {
+    for (std::size_t j : open) result.properties[j].verdict = Verdict::Proven;
+    result.complete = true;
+  } else {
+    result.depthBounded = !result.rangeError;
+  }
+
+  // k-induction on what BMC did not decide: the base case is the BMC above (no violation within
+  // `depth` steps), so k <= depth + 1. Candidates (and the ranges, which the reachable states keep
+  // unless an update leaves them) are assumed at steps 0 .. k-1 of a loop-free path and must hold
+  // at step k; a candidate that fails is dropped and the rest tried again, so that what remains
+  // is inductive as a whole (and so proven).
+  if (options.induction && !result.rangeError && !result.complete && !open.empty()) {
+    z3::context ictx;
+    SmtEncoding ind(ictx, model);
+    z3::solver step(ictx);
+    z3::params iparams(ictx);
+    if (options.timeoutMs != 0) iparams.set("timeout", options.timeoutMs);
+    step.set(iparams);
+    const std::size_t ranges = props.size();  // the pseudo-property "every variable in range"
+    std::vector<std::size_t> candidates = open;
+    candidates.push_back(ranges);
+    z3::expr_vector flags(ictx);
+    for (std::size_t j = 0; j <= props.size(); ++j) flags.push_back(ictx.bool_const(("assume_" + std::to_string(j)).c_str()));
+    auto predicate = [&](std::size_t j, std::size_t k) {
+      return j == ranges ? ind.inRange(k) : good(ind, model, props[j], k);
+    };
+    std::vector<char> proven(props.size() + 1, 0);
+    for (std::uint32_t k = 1; k <= depth + 1; ++k) {
+      step.add(ind.transition(k - 1));
+      for (std::size_t i = 0; i < k; ++i) step.add(!ind.sameState(i, k));
+      for (std::size_t j : candidates) step.add(z3::implies(flags[static_cast<int>(j)], predicate(j, k - 1)));
+      std::vector<std::size_t> inductive = candidates;
+      for (bool changed = true; changed;) {
+        changed = false;
+        z3::expr_vector assumed(ictx);
+        for (std::size_t j : inductive) assumed.push_back(flags[static_cast<int>(j)]);
+        for (auto it = inductive.begin(); it != inductive.end(); ++it) {
+          if (proven[*it]) continue;
+          step.push();
+          step.add(!predicate(*it, k));
+          z3::check_result r = step.check(assumed);
+          step.pop();
+          if (r != z3::unsat) {
+            if (r == z3::unknown) out.note = "a solver call of the induction gave up (--smt-timeout)";
+            inductive.erase(it);
+            changed = true;
+            break;
+          }
+        }
+      }
+      for (std::size_t j : inductive) {
+        if (proven[j]) continue;
+        proven[j] = 1;
+        if (j != ranges) {
+          result.properties[j].verdict = Verdict::Proven;
+          out.inductionDepth[j] = k;
+        }
+      }
+      if (std::all_of(candidates.begin(), candidates.end(), [&](std::size_t j) { return proven[j] || j == ranges; })) break;
+    }
+  }
+  result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return out;
+}
+
+}  // namespace semo::checker
