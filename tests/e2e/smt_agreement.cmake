@@ -1,0 +1,53 @@
+# Bounded model checking (Z3) against the explicit engine bounded to the same depth, on one model:
+# fails unless both find the same properties violated within DEPTH steps, with counterexamples of
+# the same length (both are shortest: breadth-first search, BMC by increasing depth).
+#
+#   cmake -DEXE=semo-verify -DINPUT=model.semo|model.ir [-DSTRATEGY=strategy.xml] -DDEPTH=k
+#         -P smt_agreement.cmake
+cmake_minimum_required(VERSION 3.19)  # string(JSON)
+
+foreach(required EXE INPUT DEPTH)
+  if(NOT DEFINED ${required})
+    message(FATAL_ERROR "smt_agreement: -D${required}=... is required")
+  endif()
+endforeach()
+set(model_args ${INPUT})
+if(DEFINED STRATEGY)
+  list(APPEND model_args --strategy ${STRATEGY})
+endif()
+
+# The violated properties of a JSON report, each as NAME=STEPS.
+function(violations json out)
+  set(found "")
+  string(JSON count LENGTH "${json}" properties)
+  math(EXPR last "${count} - 1")
+  if(count GREATER 0)
+    foreach(i RANGE ${last})
+      string(JSON verdict GET "${json}" properties ${i} verdict)
+      string(JSON type GET "${json}" properties ${i} type)
+      if(verdict STREQUAL "VIOLATED" AND type STREQUAL "safety")
+        string(JSON name GET "${json}" properties ${i} name)
+        string(JSON steps LENGTH "${json}" properties ${i} counterexample steps)
+        list(APPEND found "${name}=${steps}")
+      endif()
+    endforeach()
+  endif()
+  list(SORT found)
+  set(${out} "${found}" PARENT_SCOPE)
+endfunction()
+
+execute_process(COMMAND ${EXE} check ${model_args} --json --no-symmetry --safety-only --max-depth ${DEPTH}
+                OUTPUT_VARIABLE explicit_json RESULT_VARIABLE explicit_code)
+execute_process(COMMAND ${EXE} check ${model_args} --json --engine smt --max-depth ${DEPTH}
+                OUTPUT_VARIABLE smt_json RESULT_VARIABLE smt_code)
+foreach(code explicit_code smt_code)
+  if(NOT ${code} MATCHES "^[013]$")
+    message(FATAL_ERROR "smt_agreement: ${code} = ${${code}}")
+  endif()
+endforeach()
+violations("${explicit_json}" explicit_found)
+violations("${smt_json}" smt_found)
+if(NOT explicit_found STREQUAL smt_found)
+  message(FATAL_ERROR "smt_agreement: within ${DEPTH} steps the explicit engine finds [${explicit_found}], BMC [${smt_found}]")
+endif()
+message(STATUS "smt_agreement: within ${DEPTH} steps both find [${explicit_found}]")
