@@ -28,9 +28,13 @@ TEST(SmtSearch, BoundedModelCheckingAgreesWithBoundedExplicitSearch) {
         const PropertyResult& b = smt.search.properties[j];
         SCOPED_TRACE(a.name + " at depth " + std::to_string(depth));
         EXPECT_EQ(a.verdict == Verdict::Violated, b.verdict == Verdict::Violated);
-        if (a.counterexample && b.counterexample) EXPECT_EQ(a.counterexample->steps.size(), b.counterexample->steps.size());
+        if (a.counterexample && b.counterexample) {
+          EXPECT_EQ(a.counterexample->steps.size(), b.counterexample->steps.size());
+        }
         // A proof needs the whole state space (explicit) or no longer path (BMC): never the other way round.
-        if (b.verdict == Verdict::Proven) EXPECT_EQ(a.verdict, Verdict::Proven);
+        if (b.verdict == Verdict::Proven) {
+          EXPECT_EQ(a.verdict, Verdict::Proven);
+        }
       }
     });
     EXPECT_GE(models, 5u);
