@@ -1,0 +1,31 @@
+#pragma once
+// Group formation for every crash set, decided with Z3: a `[[ ]]` block can be formed from the live
+// robots of its team when each arm other than `others` gets a robot of its own (a robot joins at
+// most one group; a leader block needs one leader). By Hall's theorem that fails exactly when some
+// set of arms has fewer live candidates, together, than arms. The solver looks for the smallest
+// crash set that makes this happen (minimised cardinality over Boolean crash variables), so one
+// query per block gives both the smallest breaking crash set and the largest budget tolerated.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "semo/semantics/mission_model.hpp"
+
+namespace semo::checker {
+
+struct FormationVerdict {
+  std::string block;                        // "Relay (leader block)" or "Survey (block of 2 groups)"
+  std::string origin;                       // file:line:col of the block
+  std::int64_t budget = 0;                  // crashes assumed in the block's team
+  std::int64_t tolerated = 0;               // every crash set of at most this many robots leaves it formable
+  std::vector<std::string> breakingSet;     // a smallest crash set that breaks it (empty: none breaks it)
+  std::vector<std::string> unmetArms;       // the arms that then cannot all get a robot
+  [[nodiscard]] bool holds() const { return tolerated >= budget; }
+};
+
+// `origin` turns a source position into "file:line:col" for the report.
+std::vector<FormationVerdict> checkGroupFormation(const model::MissionModel& mission,
+                                                  std::string (*origin)(const model::MissionModel&, const SourceRange&) = nullptr);
+
+}  // namespace semo::checker

@@ -1,0 +1,42 @@
+// Group formation for every crash set (Z3) on the seeded defects of specs/defects: the smallest
+// crash set that breaks a block, and the budget a corrected block tolerates.
+#include <gtest/gtest.h>
+
+#include "semo/checker/group_formation.hpp"
+#include "semo/semantics/load.hpp"
+
+namespace semo::checker {
+namespace {
+
+std::vector<FormationVerdict> formation(const std::string& mission) {
+  SourceManager sources;
+  DiagnosticEngine diags(sources);
+  const std::string dir = SEMO_SOURCE_DIR "/specs/defects/";
+  std::optional<model::MissionModel> m = loadMission({dir + mission, dir + "strategy.xml", std::nullopt}, sources, diags);
+  EXPECT_TRUE(m.has_value());
+  if (!m) return {};
+  return checkGroupFormation(*m);
+}
+
+TEST(GroupFormation, OneCrashBreaksABlockWithASingleCandidate) {
+  // lone_lidar: only mapper carries a LaserDistanceSensor; crash <= 1 in Survey.
+  std::vector<FormationVerdict> v = formation("lone_lidar.semo");
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_EQ(v[0].budget, 1);
+  EXPECT_FALSE(v[0].holds());
+  EXPECT_EQ(v[0].tolerated, 0);
+  EXPECT_EQ(v[0].breakingSet, std::vector<std::string>{"mapper"});
+  ASSERT_EQ(v[0].unmetArms.size(), 1u);
+  EXPECT_NE(v[0].unmetArms[0].find("LaserDistanceSensor"), std::string::npos);
+}
+
+TEST(GroupFormation, TheCorrectedBlockToleratesItsBudget) {
+  std::vector<FormationVerdict> v = formation("lone_lidar_fixed.semo");
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_TRUE(v[0].holds()) << v[0].tolerated;
+  EXPECT_GE(v[0].tolerated, 1);
+  EXPECT_EQ(v[0].breakingSet.size(), static_cast<std::size_t>(v[0].tolerated + 1));
+}
+
+}  // namespace
+}  // namespace semo::checker
