@@ -38,5 +38,39 @@ TEST(GroupFormation, TheCorrectedBlockToleratesItsBudget) {
   EXPECT_EQ(v[0].breakingSet.size(), static_cast<std::size_t>(v[0].tolerated + 1));
 }
 
+TEST(GroupFormation, ARobotJoinsOneGroupOnly) {
+  // Two groups that both want the one robot r0 (r1 fits neither): each group alone has a
+  // candidate, but not both at once, so the block fails with every robot alive.
+  model::MissionModel m;
+  m.teams.push_back({});
+  m.teams[0].name = "T";
+  m.teams[0].robots = {0, 1};
+  m.robots = {{"r0", 0, "A", 0, {}}, {"r1", 0, "B", 1, {}}};
+  m.services.push_back({});
+  m.services[0].name = "S";
+  m.assumptions.crashBudget = {0};
+  model::GroupBlock block;
+  block.team = 0;
+  block.service = 0;
+  for (int k = 0; k < 2; ++k) {
+    model::GroupArm arm;
+    arm.names = {"A"};
+    arm.candidates = {0};
+    block.arms.push_back(std::move(arm));
+  }
+  m.groupBlocks.push_back(std::move(block));
+  std::vector<FormationVerdict> v = checkGroupFormation(m);
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_EQ(v[0].tolerated, -1);
+  EXPECT_TRUE(v[0].breakingSet.empty());
+  EXPECT_EQ(v[0].unmetArms.size(), 2u);
+  EXPECT_FALSE(v[0].holds());
+  // With r1 a candidate of the second group, both groups are staffed; one crash breaks it.
+  m.groupBlocks[0].arms[1].candidates = {0, 1};
+  v = checkGroupFormation(m);
+  EXPECT_EQ(v[0].tolerated, 0);
+  EXPECT_EQ(v[0].breakingSet.size(), 1u);
+}
+
 }  // namespace
 }  // namespace semo::checker

@@ -18,8 +18,10 @@ struct FormationVerdict {
   std::string block;                        // "Relay (leader block)" or "Survey (block of 2 groups)"
   std::string origin;                       // file:line:col of the block
   std::int64_t budget = 0;                  // crashes assumed in the block's team
-  std::int64_t tolerated = 0;               // every crash set of at most this many robots leaves it formable
-  std::vector<std::string> breakingSet;     // a smallest crash set that breaks it (empty: none breaks it)
+  // Every crash set of at most this many robots leaves it formable: -1 when it cannot be formed even
+  // with every robot alive, the team's size when no crash set breaks it.
+  std::int64_t tolerated = 0;
+  std::vector<std::string> breakingSet;     // a smallest crash set that breaks it
   std::vector<std::string> unmetArms;       // the arms that then cannot all get a robot
   [[nodiscard]] bool holds() const { return tolerated >= budget; }
 };
