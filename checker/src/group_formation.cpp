@@ -8,10 +8,10 @@ namespace semo::checker {
 
 using model::Index;
 
-std::vector<FormationVerdict> checkGroupFormation(const model::MissionModel& m,
-                                                  std::string (*origin)(const model::MissionModel&, const SourceRange&)) {
+std::vector<FormationVerdict> checkGroupFormation(const model::MissionModel& m) {
   std::vector<FormationVerdict> out;
-  for (const model::GroupBlock& block : m.groupBlocks) {
+  for (Index b = 0; b < m.groupBlocks.size(); ++b) {
+    const model::GroupBlock& block = m.groupBlocks[b];
     std::vector<const model::GroupArm*> arms;
     for (const model::GroupArm& arm : block.arms) {
       if (arm.kind != model::GroupArm::Kind::Others) arms.push_back(&arm);
@@ -19,8 +19,8 @@ std::vector<FormationVerdict> checkGroupFormation(const model::MissionModel& m,
     if (arms.empty()) continue;
     const std::vector<Index>& robots = m.teams[block.team].robots;
     FormationVerdict v;
-    v.block = m.services[block.service].name + (block.isLeaderBlock ? " (leader block)" : " (block of " + std::to_string(arms.size()) + " groups)");
-    if (origin != nullptr) v.origin = origin(m, block.at);
+    v.blockIndex = b;
+    v.block = m.services[block.service].name + (block.isLeaderBlock ? " (leader block)" : (arms.size() == 1 ? " (block of 1 group)" : " (block of " + std::to_string(arms.size()) + " groups)"));
     v.budget = block.team < m.assumptions.crashBudget.size() ? m.assumptions.crashBudget[block.team] : 0;
 
     z3::context ctx;

@@ -3,16 +3,59 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "semo/checker/group_formation.hpp"
 #include "semo/checker/smt_search.hpp"
+#include "semo/semantics/load.hpp"
 
 namespace semo::cli {
+
+namespace {
+
+struct Formation {
+  std::vector<checker::FormationVerdict> verdicts;
+  std::vector<std::string> origins;
+};
+
+// Group formation for every crash set, for a mission (an IR file has no groups to form). The mission
+// was loaded once already without errors; --crash overrides the verify block's budget, as for check.
+Formation formation(const CheckOptions& options) {
+  Formation out;
+  if (!options.model.strategy || options.model.input.size() < 3 || options.model.input.ends_with(".ir")) return out;
+  SourceManager sources;
+  DiagnosticEngine diags(sources);
+  std::optional<model::MissionModel> m = loadMission({options.model.input, *options.model.strategy, options.model.robotsDir}, sources, diags);
+  if (!m) return out;
+  if (options.model.crash) {
+    for (std::size_t t = 0; t < m->teams.size() && t < m->assumptions.crashBudget.size(); ++t) {
+      m->assumptions.crashBudget[t] = std::min<std::int64_t>(*options.model.crash, static_cast<std::int64_t>(m->teams[t].robots.size()));
+    }
+  }
+  out.verdicts = checker::checkGroupFormation(*m);
+  for (const checker::FormationVerdict& v : out.verdicts) {
+    const SourceRange& at = m->groupBlocks[v.blockIndex].at;
+    out.origins.push_back(at.begin.valid() ? sources.path(at.begin.file) + ":" + std::to_string(at.begin.line) + ":" +
+                                                 std::to_string(at.begin.column)
+                                           : "");
+  }
+  return out;
+}
+
+std::string joined(const std::vector<std::string>& parts) {
+  std::string out;
+  for (const std::string& p : parts) out += (out.empty() ? "" : ", ") + p;
+  return out;
+}
+
+}  // namespace
 
 int runCheckSmt(const CheckOptions& options, const ir::Model& model) {
   checker::SmtOptions smt;
   if (options.maxDepth != UINT32_MAX) smt.maxDepth = options.maxDepth;
   checker::SmtResult out = checker::checkSafetySmt(model, smt);
   const checker::SearchResult& r = out.search;
+  Formation groups = formation(options);
   bool violated = r.rangeError.has_value();
+  for (const checker::FormationVerdict& v : groups.verdicts) violated = violated || !v.holds();
   bool undecided = false;
   for (const checker::PropertyResult& p : r.properties) {
     violated = violated || p.verdict == checker::Verdict::Violated;
@@ -33,6 +76,13 @@ int runCheckSmt(const CheckOptions& options, const ir::Model& model) {
     nlohmann::json root = {{"input", options.model.input}, {"engine", "smt"},           {"assumptions", model.assumptions},
                            {"bmcDepth", out.bmcDepth},      {"complete", r.complete}, {"seconds", r.seconds},
                            {"properties", props},           {"exitCode", code}};
+    nlohmann::json formationJson = nlohmann::json::array();
+    for (std::size_t b = 0; b < groups.verdicts.size(); ++b) {
+      const checker::FormationVerdict& v = groups.verdicts[b];
+      formationJson.push_back({{"block", v.block}, {"origin", groups.origins[b]}, {"budget", v.budget}, {"tolerated", v.tolerated},
+                               {"verdict", v.holds() ? "proven" : "VIOLATED"}, {"breakingSet", v.breakingSet}, {"unmetArms", v.unmetArms}});
+    }
+    root["groupFormation"] = formationJson;
     if (r.rangeError) root["modelError"] = nlohmann::json::parse(checker::traceToJson(model, *r.rangeError));
     if (!out.note.empty()) root["note"] = out.note;
     std::cout << root.dump(2) << "\n";
@@ -44,6 +94,22 @@ int runCheckSmt(const CheckOptions& options, const ir::Model& model) {
             << " rules)\n";
   std::cout << "assumptions: " << (assumptions.empty() ? "none stated" : assumptions) << "\n";
   std::cout << "engine:      smt (Z3): " << how << ", " << r.seconds << " s\n";
+  if (!groups.verdicts.empty()) std::cout << "group formation, for every crash set within the budget (Z3):\n";
+  for (std::size_t b = 0; b < groups.verdicts.size(); ++b) {
+    const checker::FormationVerdict& v = groups.verdicts[b];
+    std::cout << "  " << (v.holds() ? "proven" : "VIOLATED") << "  " << v.block << " at " << groups.origins[b];
+    if (v.holds()) {
+      std::cout << "  (every crash set of up to " << v.budget << " robots leaves it formable; it tolerates " << v.tolerated << ")";
+    } else if (v.breakingSet.empty()) {
+      std::cout << "  (cannot be formed even with every robot alive: " << joined(v.unmetArms) << " cannot all get a robot of their own)";
+    } else {
+      std::cout << "  (smallest crash set that breaks it: " << joined(v.breakingSet) << "; then "
+                << (v.unmetArms.size() == 1 ? "no live robot is left for " + v.unmetArms[0]
+                                            : joined(v.unmetArms) + " cannot all get a robot of their own")
+                << ")";
+    }
+    std::cout << "\n";
+  }
   for (std::size_t j = 0; j < r.properties.size(); ++j) {
     const checker::PropertyResult& p = r.properties[j];
     std::cout << "  " << checker::verdictName(p.verdict) << "  " << p.name;

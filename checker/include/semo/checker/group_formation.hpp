@@ -15,8 +15,8 @@
 namespace semo::checker {
 
 struct FormationVerdict {
+  model::Index blockIndex = 0;              // into MissionModel::groupBlocks
   std::string block;                        // "Relay (leader block)" or "Survey (block of 2 groups)"
-  std::string origin;                       // file:line:col of the block
   std::int64_t budget = 0;                  // crashes assumed in the block's team
   // Every crash set of at most this many robots leaves it formable: -1 when it cannot be formed even
   // with every robot alive, the team's size when no crash set breaks it.
@@ -26,8 +26,7 @@ struct FormationVerdict {
   [[nodiscard]] bool holds() const { return tolerated >= budget; }
 };
 
-// `origin` turns a source position into "file:line:col" for the report.
-std::vector<FormationVerdict> checkGroupFormation(const model::MissionModel& mission,
-                                                  std::string (*origin)(const model::MissionModel&, const SourceRange&) = nullptr);
+// One verdict per block with at least one arm other than `others`, in block order.
+std::vector<FormationVerdict> checkGroupFormation(const model::MissionModel& mission);
 
 }  // namespace semo::checker
