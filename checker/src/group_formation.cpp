@@ -1,6 +1,7 @@
 #include "semo/checker/group_formation.hpp"
 
 #include <algorithm>
+#include <map>
 
 #include <z3++.h>
 
@@ -23,32 +24,44 @@ std::vector<FormationVerdict> checkGroupFormation(const model::MissionModel& m) 
     v.block = m.services[block.service].name + (block.isLeaderBlock ? " (leader block)" : (arms.size() == 1 ? " (block of 1 group)" : " (block of " + std::to_string(arms.size()) + " groups)"));
     v.budget = block.team < m.assumptions.crashBudget.size() ? m.assumptions.crashBudget[block.team] : 0;
 
-    z3::context ctx;
-    z3::optimize opt(ctx);
-    z3::expr_vector crashed(ctx), chosen(ctx);
-    for (Index r : robots) crashed.push_back(ctx.bool_const(("crashed_" + m.robots[r].name).c_str()));
-    for (std::size_t a = 0; a < arms.size(); ++a) chosen.push_back(ctx.bool_const(("arm_" + std::to_string(a)).c_str()));
-    // The chosen arms' live candidates, together, are fewer than the chosen arms (one robot each).
-    z3::expr liveCandidates = ctx.int_val(0);
-    for (std::size_t i = 0; i < robots.size(); ++i) {
-      z3::expr_vector wantedBy(ctx);
+    // Robots wanted by the same arms are interchangeable here: one count per such class (how many
+    // of it crash) keeps the problem as small as the number of classes, whatever the team's size.
+    std::map<std::vector<std::size_t>, std::vector<Index>> classes;
+    for (Index r : robots) {
+      std::vector<std::size_t> wantedBy;
       for (std::size_t a = 0; a < arms.size(); ++a) {
         const std::vector<Index>& c = arms[a]->candidates;
-        if (std::find(c.begin(), c.end(), robots[i]) != c.end()) wantedBy.push_back(chosen[static_cast<int>(a)]);
+        if (std::find(c.begin(), c.end(), r) != c.end()) wantedBy.push_back(a);
       }
-      if (wantedBy.empty()) continue;
-      liveCandidates = liveCandidates + z3::ite(z3::mk_or(wantedBy) && !crashed[static_cast<int>(i)], ctx.int_val(1), ctx.int_val(0));
+      if (!wantedBy.empty()) classes[wantedBy].push_back(r);
     }
-    z3::expr arms_needed = ctx.int_val(0);
-    for (std::size_t a = 0; a < arms.size(); ++a) arms_needed = arms_needed + z3::ite(chosen[static_cast<int>(a)], ctx.int_val(1), ctx.int_val(0));
-    opt.add(liveCandidates < arms_needed);
-    z3::expr crashes = ctx.int_val(0);
-    for (std::size_t i = 0; i < robots.size(); ++i) crashes = crashes + z3::ite(crashed[static_cast<int>(i)], ctx.int_val(1), ctx.int_val(0));
+    z3::context ctx;
+    z3::optimize opt(ctx);
+    z3::expr_vector chosen(ctx);
+    for (std::size_t a = 0; a < arms.size(); ++a) chosen.push_back(ctx.bool_const(("arm_" + std::to_string(a)).c_str()));
+    // The chosen arms' live candidates, together, are fewer than the chosen arms (one robot each).
+    z3::expr liveCandidates = ctx.int_val(0), crashes = ctx.int_val(0), armsChosen = ctx.int_val(0);
+    std::vector<z3::expr> crashedOf;
+    std::size_t k = 0;
+    for (const auto& [wantedBy, members] : classes) {
+      z3::expr crashed = ctx.int_const(("crashed_" + std::to_string(k++)).c_str());
+      const int size = static_cast<int>(members.size());
+      opt.add(crashed >= 0 && crashed <= size);
+      z3::expr_vector any(ctx);
+      for (std::size_t a : wantedBy) any.push_back(chosen[static_cast<int>(a)]);
+      liveCandidates = liveCandidates + z3::ite(z3::mk_or(any), size - crashed, ctx.int_val(0));
+      crashes = crashes + crashed;
+      crashedOf.push_back(crashed);
+    }
+    for (std::size_t a = 0; a < arms.size(); ++a) armsChosen = armsChosen + z3::ite(chosen[static_cast<int>(a)], ctx.int_val(1), ctx.int_val(0));
+    opt.add(liveCandidates < armsChosen);
     opt.minimize(crashes);
     if (opt.check() == z3::sat) {
       z3::model model = opt.get_model();
-      for (std::size_t i = 0; i < robots.size(); ++i) {
-        if (model.eval(crashed[static_cast<int>(i)], true).is_true()) v.breakingSet.push_back(m.robots[robots[i]].name);
+      k = 0;
+      for (const auto& [wantedBy, members] : classes) {
+        auto n = static_cast<std::size_t>(model.eval(crashedOf[k++], true).get_numeral_int64());
+        for (std::size_t i = 0; i < n && i < members.size(); ++i) v.breakingSet.push_back(m.robots[members[i]].name);
       }
       for (std::size_t a = 0; a < arms.size(); ++a) {
         if (!model.eval(chosen[static_cast<int>(a)], true).is_true()) continue;

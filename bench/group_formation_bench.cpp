@@ -1,0 +1,35 @@
+#include <chrono>
+#include <iostream>
+#include "semo/checker/group_formation.hpp"
+using namespace semo;
+int main() {
+  for (int arms : {5, 10, 20}) {
+    model::MissionModel m;
+    m.teams.push_back({});
+    m.teams[0].name = "T";
+    m.services.push_back({});
+    m.services[0].name = "S";
+    m.assumptions.crashBudget = {10};
+    for (int r = 0; r < 200; ++r) {
+      m.robots.push_back({"r" + std::to_string(r), 0, "type" + std::to_string(r % 5), static_cast<model::Index>(r), {}});
+      m.teams[0].robots.push_back(r);
+    }
+    model::GroupBlock block;
+    block.team = 0;
+    block.service = 0;
+    for (int a = 0; a < arms; ++a) {
+      model::GroupArm arm;
+      arm.names = {"type" + std::to_string(a % 5)};
+      // arm a wants type a%5, and (for a >= 5) also type (a+1)%5: overlapping candidate sets
+      for (int r = 0; r < 200; ++r) {
+        if (r % 5 == a % 5 || (a >= 5 && r % 5 == (a + 1) % 5)) arm.candidates.push_back(r);
+      }
+      block.arms.push_back(std::move(arm));
+    }
+    m.groupBlocks.push_back(std::move(block));
+    auto t0 = std::chrono::steady_clock::now();
+    auto v = checker::checkGroupFormation(m);
+    double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::cout << arms << " arms: tolerated " << v[0].tolerated << " budget " << v[0].budget << " breaking " << v[0].breakingSet.size() << " in " << s << " s\n";
+  }
+}
