@@ -1,3 +1,11 @@
+// Benchmark (not a test): group formation for every crash set (checker/group_formation.hpp) on a
+// team of 200 robots of 5 types, crash <= 10, one block with 5, 10 or 20 arms whose candidate
+// sets overlap (arm a wants type a % 5, and from a = 5 on also type (a + 1) % 5). Prints the
+// budget tolerated, the size of the smallest breaking crash set and the time. Build against a
+// release build (paths from the project's top folder):
+//   g++ -std=c++20 -O2 -I checker/include -I semantics/include -I frontend/include \
+//       bench/group_formation_bench.cpp build/checker/libsemo_checker.a \
+//       build/semantics/libsemo_semantics.a build/frontend/libsemo_frontend.a -lz3 -ltinyxml2 -lpthread
 #include <chrono>
 #include <iostream>
 #include "semo/checker/group_formation.hpp"
