@@ -141,9 +141,9 @@ z3::expr SmtEncoding::value(const ir::Expr& e, std::size_t k) {
         std::int32_t hi = d.op == Op::Const ? d.value : m_.variables[static_cast<std::size_t>(d.value)].max;
         if (static_cast<std::int64_t>(hi) - lo <= 64) {
           z3::expr b = value(d, k), result = ctx_.int_val(0);  // x / 0 = x % 0 = 0
+          z3::expr absA = z3::ite(a >= 0, a, -a);
           for (std::int32_t c = lo; c <= hi; ++c) {
             if (c == 0) continue;
-            z3::expr absA = z3::ite(a >= 0, a, -a);
             z3::expr magnitude = absA / std::abs(c);
             z3::expr q = c > 0 ? z3::ite(a >= 0, magnitude, -magnitude) : z3::ite(a >= 0, -magnitude, magnitude);
             result = z3::ite(b == c, e.op == Op::Div ? q : a - q * c, result);

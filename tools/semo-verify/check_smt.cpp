@@ -20,7 +20,7 @@ struct Formation {
 // was loaded once already without errors; --crash overrides the verify block's budget, as for check.
 Formation formation(const CheckOptions& options) {
   Formation out;
-  if (!options.model.strategy || options.model.input.size() < 3 || options.model.input.ends_with(".ir")) return out;
+  if (!options.model.strategy || options.model.input.ends_with(".ir")) return out;
   SourceManager sources;
   DiagnosticEngine diags(sources);
   std::optional<model::MissionModel> m = loadMission({options.model.input, *options.model.strategy, options.model.robotsDir}, sources, diags);
