@@ -458,13 +458,25 @@ void Translator::walk(Index robot, std::size_t planIndex, std::size_t at, Path p
           if (block.arms[a].kind == model::GroupArm::Kind::Leader) leaderArm = in.arms[a];
           if (block.arms[a].kind == model::GroupArm::Kind::Others) othersArm = in.arms[a];
         }
-        // The group starts together (synchronised start): whoever forms it first runs the election,
-        // and every member agrees on its result, the best live candidate, when nobody leads yet.
+        // The group starts together (synchronised start): whoever forms it first runs the election
+        // among the robots forming it with it, and they agree on its result, the best of them, when
+        // no live candidate leads yet.
+        Expr best = bestFormingCandidate(in.block, planIndex, at);
         auto electedIs = [&](Index c) {
           return Expr::binary(Op::Or, Expr::var(vars_[c].leads.at(in.block)),
-                              ir::conjunction({noLeader(in.block), eq(bestCandidate(in.block), static_cast<std::int32_t>(c))}));
+                              ir::conjunction({noLeader(in.block), eq(best, static_cast<std::int32_t>(c))}));
         };
         for (Index c : candidates(in.block)) path.updates.push_back({vars_[c].leads.at(in.block), electedIs(c)});
+        // A new leader announces itself at once (its first heartbeat): waiting candidates start
+        // their failure timeout afresh, so none takes over from a leader it has not yet heard.
+        // Where heartbeats may be lost, so may the announcement: then nothing is reset.
+        if (!loseHeartbeats_) {
+          for (Index c : candidates(in.block)) {
+            auto silence = vars_[c].silence.find(in.block);
+            if (silence == vars_[c].silence.end()) continue;
+            path.updates.push_back({silence->second, Expr::ite(noLeader(in.block), Expr::constant(0), Expr::var(silence->second))});
+          }
+        }
         if (vars_[robot].leads.count(in.block) != 0) {
           Path leading = path;
           leading.guard.push_back(electedIs(robot));

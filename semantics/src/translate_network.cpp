@@ -168,13 +168,24 @@ std::int32_t Translator::timeoutPeriods(Index b) const {
   return static_cast<std::int32_t>(std::max<std::int64_t>(1, c.timeoutMillis / std::max<std::int64_t>(1, c.heartbeatMillis)));
 }
 
-// The live candidate the block's algorithm prefers, or "none" (the number of robots).
-Expr Translator::bestCandidate(Index b) const {
+// The candidates of block b, most preferred first (bully: highest index; lowest-id: lowest).
+std::vector<Index> Translator::preferenceOrder(Index b) const {
   std::vector<Index> order = candidates(b);
   if (m_.groupBlocks[b].leader.algorithm == strategy::LeaderSelection::Algorithm::Bully) std::reverse(order.begin(), order.end());
+  return order;
+}
+
+// The live candidate the block's algorithm prefers among those forming the block now (resting at
+// its formation point `formPoint` of plan `planIndex`), or "none" (the number of robots). A robot
+// still elsewhere is no member yet: electing it would make a leader that is not there.
+Expr Translator::bestFormingCandidate(Index b, std::size_t planIndex, std::size_t formPoint) const {
+  std::vector<Index> order = preferenceOrder(b);
   Expr best = Expr::constant(static_cast<std::int32_t>(m_.robots.size()));
   for (auto it = order.rbegin(); it != order.rend(); ++it) {
-    best = Expr::ite(alive(*it), Expr::constant(static_cast<std::int32_t>(*it)), std::move(best));
+    const std::optional<ir::VarId>& pc = vars_[*it].pc[planIndex];
+    if (!pc) continue;
+    Expr forming = ir::conjunction({alive(*it), eq(Expr::var(*pc), static_cast<std::int32_t>(formPoint))});
+    best = Expr::ite(std::move(forming), Expr::constant(static_cast<std::int32_t>(*it)), std::move(best));
   }
   return best;
 }
@@ -205,6 +216,11 @@ Expr Translator::waitingForHeartbeats(Index robot, Index b) const {
   return ir::conjunction({alive(robot), lnot(Expr::var(vars_[robot].leads.at(b))), ir::disjunction(std::move(inOthers))});
 }
 
+// A candidate that heard no heartbeat for the failure timeout.
+Expr Translator::suspects(Index robot, Index b) const {
+  return Expr::binary(Op::Ge, Expr::var(vars_[robot].silence.at(b)), Expr::constant(timeoutPeriods(b)));
+}
+
 // One heartbeat period of a leader block (specs/semantics.md, "Leaders"): every live leader sends a
 // heartbeat; each waiting candidate hears one unless it is lost (at most `burst` in a row); one that
 // hears nothing counts a silent period. A leader that hears a better leader steps down. One rule per
@@ -214,8 +230,7 @@ void Translator::roundRules(Index b) {
   if (cands.empty() || !vars_[cands.front()].silence.count(b)) return;
   std::int32_t k = timeoutPeriods(b);
   auto burst = static_cast<std::int32_t>(m_.assumptions.lossBurst);
-  std::vector<Index> order = cands;  // most preferred first
-  if (m_.groupBlocks[b].leader.algorithm == strategy::LeaderSelection::Algorithm::Bully) std::reverse(order.begin(), order.end());
+  std::vector<Index> order = preferenceOrder(b);
   std::size_t subsets = loseHeartbeats_ ? (std::size_t{1} << cands.size()) : 1;
   std::vector<Expr> anyWaiting;
   for (Index c : cands) anyWaiting.push_back(waitingForHeartbeats(c, b));
@@ -299,11 +314,16 @@ void Translator::leaderRules() {
           take.guard = ir::conjunction({alive(c), lnot(Expr::var(v.leads.at(b))),
                                         Expr::binary(Op::Ge, pc, Expr::constant(static_cast<std::int32_t>(range.armFirst[othersArm]))),
                                         Expr::binary(Op::Lt, pc, Expr::constant(static_cast<std::int32_t>(range.armEnd(othersArm)))),
-                                        Expr::binary(Op::Ge, Expr::var(v.silence.at(b)), Expr::constant(timeoutPeriods(b)))});
+                                        suspects(c, b)});
           std::vector<ir::Assignment> updates{{v.leads.at(b), Expr::constant(1)},
                                               {v.silence.at(b), Expr::constant(0)},
                                               {*v.pc[p], Expr::constant(static_cast<std::int32_t>(leaderEntry))}};
           if (v.lossRun.count(b)) updates.push_back({v.lossRun.at(b), Expr::constant(0)});
+          if (!loseHeartbeats_) {  // the new leader's announcement, as when the block forms
+            for (Index d : candidates(b)) {
+              if (d != c && vars_[d].silence.count(b) != 0) updates.push_back({vars_[d].silence.at(b), Expr::constant(0)});
+            }
+          }
           take.branches.push_back({1.0, std::move(updates)});
           take.weaklyFair = true;
           addRule(std::move(take));

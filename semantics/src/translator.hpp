@@ -83,7 +83,9 @@ class Translator {
   [[nodiscard]] std::string origin(const SourceRange& r) const;
   [[nodiscard]] bool topicRead(Index team, Index topic) const;
   [[nodiscard]] std::int32_t crashBudget(Index team) const;
-  [[nodiscard]] Expr bestCandidate(Index block) const;
+  [[nodiscard]] std::vector<Index> preferenceOrder(Index block) const;
+  [[nodiscard]] Expr bestFormingCandidate(Index block, std::size_t planIndex, std::size_t formPoint) const;
+  [[nodiscard]] Expr suspects(Index robot, Index block) const;
   [[nodiscard]] const std::vector<Index>& candidates(Index block) const;
   [[nodiscard]] Expr noLeader(Index block) const;
   [[nodiscard]] Expr waitingForHeartbeats(Index robot, Index block) const;

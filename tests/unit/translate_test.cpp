@@ -201,5 +201,29 @@ TEST(Translate, ALeaderThatLeavesItsBlockStopsLeading) {
   EXPECT_EQ(exits, 1u);
 }
 
+TEST(Translate, ALeaderIsElectedOnlyAmongTheRobotsFormingTheBlock) {
+  // scout_0 reaches the relay block while scout_1 still drives. Electing scout_1 then (the best
+  // candidate, but not there) made a leader that its own mode change cleared a moment later;
+  // scout_0 timed out, scout_1 formed the block anew and led, and scout_0 took over: two leaders.
+  auto t = translateText(R"(
+Scouts: Ev3Robot scout[2]
+Scouts.Drive.Go { move("x") }
+Scouts.Report.Relay {
+  [[ leader (capable of ColorSensor) { loop(5 SEC) move("north") }
+     others { loop(1 SEC) move("south") } ]]
+}
+Scouts.DRIVE { set(Drive, Go) }
+Scouts.RELAY { set(Report, Relay) }
+Scouts.main { case (DRIVE): default: mode = RELAY  case (RELAY): default: mode = RELAY }
+verify { assume crash <= 1 in Scouts  check unique_leader }
+)", "late_member");
+  ASSERT_TRUE(t->model.has_value());
+  checker::SearchResult r = checker::checkSafety(*t->model, {});
+  const checker::PropertyResult* unique = find(r, "unique_leader");
+  ASSERT_NE(unique, nullptr);
+  EXPECT_TRUE(r.complete);
+  EXPECT_EQ(unique->verdict, checker::Verdict::Proven);
+}
+
 }  // namespace
 }  // namespace semo
