@@ -9,6 +9,29 @@ namespace semo::checker {
 
 using model::Index;
 
+namespace {
+
+// The robots a group needs: the largest `min-robots` of the group services its body calls (through
+// composite services too), at least one. `depth` guards against composites that call each other.
+std::int64_t largestMinimum(const model::MissionModel& m, const std::vector<model::Stmt>& body, int depth) {
+  std::int64_t most = 1;
+  if (depth > 32) return most;
+  for (const model::Stmt& s : body) {
+    if (s.kind == model::Stmt::Kind::CallGroupService) {
+      if (const strategy::Service* service = m.strategy.service(s.service)) most = std::max(most, service->minRobots);
+    }
+    if (s.kind == model::Stmt::Kind::CallComposite && s.composite < m.services.size()) {
+      most = std::max(most, largestMinimum(m, m.services[s.composite].body, depth + 1));
+    }
+    most = std::max({most, largestMinimum(m, s.thenBody, depth + 1), largestMinimum(m, s.elseBody, depth + 1)});
+  }
+  return most;
+}
+
+std::int64_t minimumSize(const model::MissionModel& m, const model::GroupArm& arm) { return largestMinimum(m, arm.body, 0); }
+
+}  // namespace
+
 std::vector<FormationVerdict> checkGroupFormation(const model::MissionModel& m) {
   std::vector<FormationVerdict> out;
   for (Index b = 0; b < m.groupBlocks.size(); ++b) {
@@ -39,7 +62,8 @@ std::vector<FormationVerdict> checkGroupFormation(const model::MissionModel& m) 
     z3::optimize opt(ctx);
     z3::expr_vector chosen(ctx);
     for (std::size_t a = 0; a < arms.size(); ++a) chosen.push_back(ctx.bool_const(("arm_" + std::to_string(a)).c_str()));
-    // The chosen arms' live candidates, together, are fewer than the chosen arms (one robot each).
+    // The chosen arms' live candidates, together, are fewer than the robots the chosen arms need
+    // (Hall's condition with a demand per arm: each needs its minimum size, robots of its own).
     z3::expr liveCandidates = ctx.int_val(0), crashes = ctx.int_val(0), armsChosen = ctx.int_val(0);
     std::vector<z3::expr> crashedOf;
     std::size_t k = 0;
@@ -53,7 +77,9 @@ std::vector<FormationVerdict> checkGroupFormation(const model::MissionModel& m) 
       crashes = crashes + crashed;
       crashedOf.push_back(crashed);
     }
-    for (std::size_t a = 0; a < arms.size(); ++a) armsChosen = armsChosen + z3::ite(chosen[static_cast<int>(a)], ctx.int_val(1), ctx.int_val(0));
+    for (std::size_t a = 0; a < arms.size(); ++a) {
+      armsChosen = armsChosen + z3::ite(chosen[static_cast<int>(a)], ctx.int_val(static_cast<int>(minimumSize(m, *arms[a]))), ctx.int_val(0));
+    }
     opt.add(liveCandidates < armsChosen);
     opt.minimize(crashes);
     if (opt.check() == z3::sat) {

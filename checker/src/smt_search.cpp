@@ -1,15 +1,18 @@
 #include "semo/checker/smt_search.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <optional>
 
 #include "smt_encoding.hpp"
+#include "smt_ic3.hpp"
 
 namespace semo::checker {
 
 namespace {
 
 using detail::SmtEncoding;
+using detail::Ic3Outcome;
 using Clock = std::chrono::steady_clock;
 
 // The safety properties in the explicit engine's order: the invariants, then deadlock freedom.
@@ -61,6 +64,91 @@ z3::check_result checkWith(z3::solver& s, const z3::expr& extra) {
   return r;
 }
 
+// A path of exactly `depth` steps, within the ranges, that ends where `error` holds (error(enc, k)
+// is a condition on step k, or on steps k-1 and k for a range error); nullopt if there is none or
+// the solver gave up. IC3 tells how deep its counterexample is but not the path itself.
+template <class Error>
+std::optional<Trace> pathOfDepth(const ir::Model& m, std::uint32_t depth, Error error, unsigned timeoutMs) {
+  z3::context ctx;
+  SmtEncoding enc(ctx, m);
+  z3::solver s(ctx);
+  if (timeoutMs != 0) {
+    z3::params p(ctx);
+    p.set("timeout", timeoutMs);
+    s.set(p);
+  }
+  s.add(enc.initial(0));
+  for (std::uint32_t k = 0; k < depth; ++k) {
+    s.add(enc.transition(k));
+    if (k + 1 < depth) s.add(enc.inRange(k + 1));
+  }
+  s.add(error(enc, depth));
+  if (s.check() != z3::sat) return std::nullopt;
+  return traceOf(s.get_model(), enc, m, depth);
+}
+
+// IC3 on every property still unknown after k-induction. The step relation keeps to the ranges, so
+// the ranges come first: unless k-induction already proved them, IC3 must (an update that leaves a
+// range is a modelling error, reported with its path as BMC would).
+void runIc3(const ir::Model& m, const std::vector<Target>& props, const SmtOptions& options, bool rangesProven, SmtResult& out) {
+  SearchResult& result = out.search;
+  std::vector<std::size_t> open;
+  for (std::size_t j = 0; j < props.size(); ++j) {
+    if (result.properties[j].verdict == Verdict::Unknown) open.push_back(j);
+  }
+  z3::context ctx;
+  SmtEncoding enc(ctx, m);
+  if (!rangesProven) {
+    Ic3Outcome ranges = detail::proveWithIc3(ctx, enc, enc.transitionByCases(0) && !enc.inRange(1), options.timeoutMs);
+    if (ranges.kind == Ic3Outcome::Kind::Violated) {
+      auto leaves = [](SmtEncoding& e, std::uint32_t d) { return !e.inRange(d); };
+      // The error clause takes the step that leaves the range itself: one more than IC3's count.
+      if (std::optional<Trace> t = pathOfDepth(m, ranges.depth + 1, leaves, options.timeoutMs)) {
+        t->kind = "range";
+        t->property = "variable ranges";
+        result.rangeError = std::move(*t);
+        result.limitReached = "an update left a variable's declared range";
+        for (std::size_t j = 0; j < props.size(); ++j) {  // a model with an error proves nothing
+          if (result.properties[j].verdict == Verdict::Violated) continue;
+          result.properties[j].verdict = Verdict::Unknown;
+          out.proof[j] = SmtProof::None;
+          out.inductionDepth[j] = 0;
+        }
+      } else {
+        out.note = "IC3 found an update leaving a declared range after " + std::to_string(ranges.depth + 1) +
+                   " steps, but no path of that length was rebuilt";
+      }
+      return;
+    }
+    if (ranges.kind == Ic3Outcome::Kind::Unknown) {
+      out.note = "IC3 could not show that every variable stays in its range (" + ranges.note + "), so proved nothing unbounded";
+      return;
+    }
+  }
+  for (std::size_t j : open) {
+    Ic3Outcome o = detail::proveWithIc3(ctx, enc, !good(enc, m, props[j], 0), options.timeoutMs);
+    if (o.kind == Ic3Outcome::Kind::Proven) {
+      result.properties[j].verdict = Verdict::Proven;
+      out.proof[j] = SmtProof::Ic3;
+      out.invariantConjuncts[j] = o.conjuncts;
+    } else if (o.kind == Ic3Outcome::Kind::Violated) {
+      const Target& t = props[j];
+      auto fails = [&m, &t](SmtEncoding& e, std::uint32_t d) { return !good(e, m, t, d) && e.inRange(d); };
+      if (std::optional<Trace> trace = pathOfDepth(m, o.depth, fails, options.timeoutMs)) {
+        trace->property = t.name;
+        trace->kind = t.invariant != nullptr ? "invariant" : "deadlock";
+        result.properties[j].verdict = Verdict::Violated;
+        result.properties[j].counterexample = std::move(*trace);
+        out.deepCounterexample[j] = 1;
+      } else {
+        out.note = "IC3 found " + t.name + " violated after " + std::to_string(o.depth) + " steps, but no path of that length was rebuilt";
+      }
+    } else if (out.note.empty()) {
+      out.note = o.note;
+    }
+  }
+}
+
 }  // namespace
 
 SmtResult checkSafetySmt(const ir::Model& model, const SmtOptions& options) {
@@ -70,6 +158,9 @@ SmtResult checkSafetySmt(const ir::Model& model, const SmtOptions& options) {
   const std::vector<Target> props = targets(model);
   for (const Target& t : props) result.properties.push_back({t.name, t.origin, Verdict::Unknown, {}});
   out.inductionDepth.assign(props.size(), 0);
+  out.invariantConjuncts.assign(props.size(), 0);
+  out.deepCounterexample.assign(props.size(), 0);
+  out.proof.assign(props.size(), SmtProof::None);
 
   z3::context ctx;
   z3::params params(ctx);
@@ -126,17 +217,22 @@ SmtResult checkSafetySmt(const ir::Model& model, const SmtOptions& options) {
   out.bmcDepth = depth;
   result.depth = depth;
   if (complete && !limited) {
-    for (std::size_t j : open) result.properties[j].verdict = Verdict::Proven;
+    for (std::size_t j : open) {
+      result.properties[j].verdict = Verdict::Proven;
+      out.proof[j] = SmtProof::Exhausted;
+    }
     result.complete = true;
   } else {
     result.depthBounded = !result.rangeError;
   }
 
   // k-induction on what BMC did not decide: the base case is the BMC above (no violation within
-  // `depth` steps), so k <= depth + 1. Candidates (and the ranges, which the reachable states keep
+  // `depth` steps), so k <= depth + 1 (and at most maxInduction: deeper levels cost much and rarely
+  // succeed where IC3, next, does not). Candidates (and the ranges, which the reachable states keep
   // unless an update leaves them) are assumed at steps 0 .. k-1 of a loop-free path and must hold
   // at step k; a candidate that fails is dropped and the rest tried again, so that what remains
   // is inductive as a whole (and so proven).
+  std::vector<char> inductiveFlags(props.size() + 1, 0);  // proven by induction: per property, and last the ranges
   if (options.induction && !result.rangeError && !result.complete && !open.empty()) {
     z3::context ictx;
     SmtEncoding ind(ictx, model);
@@ -152,8 +248,9 @@ SmtResult checkSafetySmt(const ir::Model& model, const SmtOptions& options) {
     auto predicate = [&](std::size_t j, std::size_t k) {
       return j == ranges ? ind.inRange(k) : good(ind, model, props[j], k);
     };
-    std::vector<char> proven(props.size() + 1, 0);
-    for (std::uint32_t k = 1; k <= depth + 1; ++k) {
+    std::vector<char>& proven = inductiveFlags;
+    const std::uint32_t maxK = std::min(depth + 1, options.maxInduction);
+    for (std::uint32_t k = 1; k <= maxK; ++k) {
       step.add(ind.transition(k - 1));
       for (std::size_t i = 0; i < k; ++i) step.add(!ind.sameState(i, k));
       for (std::size_t j : candidates) step.add(z3::implies(flags[static_cast<int>(j)], predicate(j, k - 1)));
@@ -181,12 +278,14 @@ SmtResult checkSafetySmt(const ir::Model& model, const SmtOptions& options) {
         proven[j] = 1;
         if (j != ranges) {
           result.properties[j].verdict = Verdict::Proven;
+          out.proof[j] = SmtProof::Induction;
           out.inductionDepth[j] = k;
         }
       }
       if (std::all_of(candidates.begin(), candidates.end(), [&](std::size_t j) { return proven[j] || j == ranges; })) break;
     }
   }
+  if (options.ic3 && !result.rangeError && !result.complete) runIc3(model, props, options, inductiveFlags.back() != 0, out);
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return out;
 }

@@ -38,7 +38,7 @@ endfunction()
 
 execute_process(COMMAND ${EXE} check ${model_args} --json --no-symmetry --safety-only --max-depth ${DEPTH}
                 OUTPUT_VARIABLE explicit_json RESULT_VARIABLE explicit_code)
-execute_process(COMMAND ${EXE} check ${model_args} --json --engine smt --max-depth ${DEPTH}
+execute_process(COMMAND ${EXE} check ${model_args} --json --engine smt --max-depth ${DEPTH} --bmc-only
                 OUTPUT_VARIABLE smt_json RESULT_VARIABLE smt_code)
 foreach(code explicit_code smt_code)
   if(NOT ${code} MATCHES "^[013]$")

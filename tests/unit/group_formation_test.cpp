@@ -72,5 +72,46 @@ TEST(GroupFormation, ARobotJoinsOneGroupOnly) {
   EXPECT_EQ(v[0].breakingSet.size(), 1u);
 }
 
+TEST(GroupFormation, AGroupNeedsTheMinimumSizeOfTheGroupServicesItRuns) {
+  // One group of four candidates whose body runs a group service with min-robots = 3 (inside an
+  // `if`): it tolerates one crash, not two; with the default of one robot it would tolerate three.
+  model::MissionModel m;
+  m.teams.push_back({});
+  m.teams[0].name = "T";
+  m.teams[0].robots = {0, 1, 2, 3};
+  for (int r = 0; r < 4; ++r) m.robots.push_back({"r" + std::to_string(r), 0, "A", static_cast<model::Index>(r), {}});
+  m.services.push_back({});
+  m.services[0].name = "S";
+  m.assumptions.crashBudget = {2};
+  strategy::Service search;
+  search.name = "search";
+  search.kind = strategy::Service::Kind::Group;
+  search.minRobots = 3;
+  m.strategy.services.push_back(search);
+  model::GroupBlock block;
+  block.team = 0;
+  block.service = 0;
+  model::GroupArm arm;
+  arm.names = {"A"};
+  arm.candidates = {0, 1, 2, 3};
+  model::Stmt branch;
+  branch.kind = model::Stmt::Kind::If;
+  branch.thenBody.emplace_back();
+  branch.thenBody.back().kind = model::Stmt::Kind::CallGroupService;
+  branch.thenBody.back().service = "search";
+  arm.body.push_back(std::move(branch));
+  block.arms.push_back(std::move(arm));
+  m.groupBlocks.push_back(std::move(block));
+  std::vector<FormationVerdict> v = checkGroupFormation(m);
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_EQ(v[0].tolerated, 1);
+  EXPECT_FALSE(v[0].holds());
+  EXPECT_EQ(v[0].breakingSet.size(), 2u);
+  m.strategy.services[0].minRobots = 1;
+  v = checkGroupFormation(m);
+  EXPECT_EQ(v[0].tolerated, 3);
+  EXPECT_TRUE(v[0].holds());
+}
+
 }  // namespace
 }  // namespace semo::checker

@@ -21,6 +21,7 @@ TEST(SmtSearch, BoundedModelCheckingAgreesWithBoundedExplicitSearch) {
       SmtOptions options;
       options.maxDepth = depth;
       options.induction = false;
+      options.ic3 = false;
       SmtResult smt = checkSafetySmt(m, options);
       ASSERT_EQ(smt.search.properties.size(), explicitResult.properties.size());
       for (std::size_t j = 0; j < smt.search.properties.size(); ++j) {
@@ -58,18 +59,61 @@ TEST(SmtSearch, KInductionProvesAnInvariantOfAnUnboundedlyLongRun) {
   EXPECT_FALSE(r.search.complete) << "the run never ends: only induction proves anything";
 }
 
-TEST(SmtSearch, AViolationBeyondTheBoundIsNotProven) {
-  // The bad state is 8 steps away: BMC to 5 misses it and induction must not prove it.
+TEST(SmtSearch, AViolationBeyondTheBoundIsNotProvenAndIc3FindsIt) {
+  // The bad state is 8 steps away: BMC to 5 misses it and induction must not prove it; IC3 finds
+  // it and BMC rebuilds the path at that depth.
   ir::Model m = test::parseIr("semo-ir 1;\nvar x : 0..9 = 0;\nrule inc @fair : x < 9 -> x' = x + 1;\n"
                               "invariant below_eight : x < 8;\n");
   SmtOptions options;
   options.maxDepth = 5;
+  options.ic3 = false;
   SmtResult r = checkSafetySmt(m, options);
   EXPECT_EQ(r.search.properties[0].verdict, Verdict::Unknown);
-  options.maxDepth = 8;
+  options.ic3 = true;
   r = checkSafetySmt(m, options);
   ASSERT_EQ(r.search.properties[0].verdict, Verdict::Violated);
   EXPECT_EQ(r.search.properties[0].counterexample->steps.size(), 8u);
+  EXPECT_TRUE(r.deepCounterexample[0]);
+  options.maxDepth = 8;
+  options.ic3 = false;
+  r = checkSafetySmt(m, options);
+  ASSERT_EQ(r.search.properties[0].verdict, Verdict::Violated);
+  EXPECT_EQ(r.search.properties[0].counterexample->steps.size(), 8u);
+  EXPECT_FALSE(r.deepCounterexample[0]);
+}
+
+TEST(SmtSearch, Ic3ProvesWhatNeedsAStrengthening) {
+  // Two counters in lock step round a cycle of 21: `not (x == 0 and y == 10)` holds, but every
+  // state of the cycle x - y = 11 (mod 21) leads to the bad one along a loop-free path of up to 20
+  // steps, so k-induction needs k = 21; IC3 learns x == y.
+  ir::Model m = test::parseIr("semo-ir 1;\nvar x : 0..20 = 0;\nvar y : 0..20 = 0;\n"
+                              "rule tick @fair : true -> x' = x == 20 ? 0 : x + 1, y' = y == 20 ? 0 : y + 1;\n"
+                              "invariant apart : !(x == 0 && y == 10);\n");
+  SmtOptions options;
+  options.maxDepth = 4;
+  options.ic3 = false;
+  SmtResult r = checkSafetySmt(m, options);
+  EXPECT_EQ(r.search.properties[0].verdict, Verdict::Unknown);
+  options.ic3 = true;
+  r = checkSafetySmt(m, options);
+  EXPECT_EQ(r.search.properties[0].verdict, Verdict::Proven);
+  EXPECT_EQ(r.proof[0], SmtProof::Ic3);
+  EXPECT_GE(r.invariantConjuncts[0], 1u);
+  // The explicit engine agrees (the whole cycle of 21 states).
+  EXPECT_EQ(checkSafety(m, {}).properties[0].verdict, Verdict::Proven);
+}
+
+TEST(SmtSearch, Ic3FindsARangeErrorBeyondTheBound) {
+  // x leaves its range 0..5 at the sixth step: BMC to 3 cannot see it, IC3 on the ranges does, and
+  // nothing is proven in a model with an error.
+  ir::Model m = test::parseIr("semo-ir 1;\nvar x : 0..5 = 0;\nrule inc @fair : x < 7 -> x' = x + 1;\n"
+                              "invariant small : x < 100;\n");
+  SmtOptions options;
+  options.maxDepth = 3;
+  SmtResult r = checkSafetySmt(m, options);
+  ASSERT_TRUE(r.search.rangeError.has_value());
+  EXPECT_EQ(r.search.rangeError->steps.size(), 6u);
+  EXPECT_NE(r.search.properties[0].verdict, Verdict::Proven);
 }
 
 TEST(SmtSearch, TruncatingDivisionAsTheExplicitEngine) {

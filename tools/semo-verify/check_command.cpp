@@ -88,10 +88,15 @@ bool writeAtomically(const std::string& path, const std::string& text) {
 
 }  // namespace
 
+// --engine auto: the explicit engine decides everything (liveness too) when the state space fits a
+// budget; past it, the smt engine's symbolic proofs do not depend on the number of states.
+constexpr std::uint64_t kAutoStateBudget = 2'000'000;
+
 int runCheck(const CheckOptions& options) {
   std::optional<ir::Model> model = buildModel(options.model);
   if (!model) return kBadInput;
   if (options.engine == "smt") return runCheckSmt(options, *model);
+  const bool automatic = options.engine == "auto";
   checker::SearchLimits limits;
   limits.maxStates = options.maxStates;
   limits.maxMemoryBytes = options.maxMemoryMiB << 20;
@@ -109,8 +114,27 @@ int runCheck(const CheckOptions& options) {
                 << (p.bytes >> 20) << " MiB, " << static_cast<int>(p.seconds) << " s" << (terminal ? "   " : "\n") << std::flush;
     };
   }
+  std::string engineReason;
+  if (automatic) {
+    // The probe is never depth-bounded: --max-depth is for BMC, should smt be chosen.
+    limits.maxStates = std::min(options.maxStates, kAutoStateBudget);
+    limits.maxDepth = UINT32_MAX;
+  }
   checker::SearchResult r = checker::checkSafety(*model, limits);
   if (r.seconds >= 1.0 && !options.json && isatty(STDERR_FILENO) != 0) std::cerr << "\n";
+  if (automatic) {
+    bool found = r.rangeError.has_value();
+    for (const checker::PropertyResult& p : r.properties) found = found || p.verdict == checker::Verdict::Violated;
+    if (!r.complete && !found && !r.depthBounded) {
+      CheckOptions symbolic = options;
+      symbolic.engineReason = "the explicit search did not cover the state space within its budget of " +
+                              std::to_string(limits.maxStates) + " states (stopped after " + std::to_string(r.states) + "), so smt";
+      return runCheckSmt(symbolic, *model);
+    }
+    engineReason = found ? "explicit search found a violation within its budget of " + std::to_string(kAutoStateBudget) + " states"
+                         : "the state space fits the explicit engine's budget of " + std::to_string(kAutoStateBudget) + " states";
+    limits.maxStates = options.maxStates;  // the liveness products get the usual limit
+  }
 
   // Liveness needs the whole product: not after a modelling error, and never depth-bounded.
   checker::LivenessResult live;
@@ -118,7 +142,7 @@ int runCheck(const CheckOptions& options) {
   if (!model->properties.empty()) {
     if (options.safetyOnly) liveSkipped = "not checked: --safety-only";
     else if (r.rangeError) liveSkipped = "not checked: the model has an error";
-    else if (options.maxDepth != UINT32_MAX) liveSkipped = "not checked: --max-depth bounds safety only";
+    else if (limits.maxDepth != UINT32_MAX) liveSkipped = "not checked: --max-depth bounds safety only";
     if (liveSkipped.empty()) {
       live = checker::checkLiveness(*model, limits);
       if (live.seconds >= 1.0 && !options.json && isatty(STDERR_FILENO) != 0) std::cerr << "\n";
@@ -154,7 +178,8 @@ int runCheck(const CheckOptions& options) {
                            {"depth", r.depth},               {"complete", r.complete},
                            {"seconds", r.seconds},           {"bytesPerState", r.bytesPerState},
                            {"properties", props},            {"exitCode", code},
-                           {"symmetry", r.symmetry}};
+                           {"symmetry", r.symmetry},         {"engine", "explicit"}};
+    if (!engineReason.empty()) root["engineChoice"] = engineReason;
     if (!r.limitReached.empty()) root["limit"] = r.limitReached;
     if (r.depthBounded) root["boundedDepth"] = r.depth;
     if (r.rangeError) root["modelError"] = nlohmann::json::parse(checker::traceToJson(*model, *r.rangeError));
@@ -171,6 +196,7 @@ int runCheck(const CheckOptions& options) {
   std::cout << "model:       " << options.model.input << " (" << model->variables.size() << " variables, "
             << model->rules.size() << " rules)\n";
   std::cout << "assumptions: " << assumptionsLine(*model) << "\n";
+  if (!engineReason.empty()) std::cout << "engine:      explicit (--engine auto: " << engineReason << ")\n";
   for (const std::string& c : r.symmetry) std::cout << "symmetry:    interchangeable " << c << "\n";
   std::cout << "explored:    " << r.states << " states, " << r.transitions << " transitions, depth " << r.depth << " ("
             << (r.complete ? "complete" : "PARTIAL: " + r.limitReached) << "), " << r.seconds << " s\n";

@@ -40,6 +40,15 @@ Formation formation(const CheckOptions& options) {
   return out;
 }
 
+const char* proofName(checker::SmtProof p) {
+  switch (p) {
+    case checker::SmtProof::Exhausted: return "exhausted";
+    case checker::SmtProof::Induction: return "k-induction";
+    case checker::SmtProof::Ic3: return "ic3";
+    default: return "none";
+  }
+}
+
 std::string joined(const std::vector<std::string>& parts) {
   std::string out;
   for (const std::string& p : parts) out += (out.empty() ? "" : ", ") + p;
@@ -51,6 +60,8 @@ std::string joined(const std::vector<std::string>& parts) {
 int runCheckSmt(const CheckOptions& options, const ir::Model& model) {
   checker::SmtOptions smt;
   if (options.maxDepth != UINT32_MAX) smt.maxDepth = options.maxDepth;
+  smt.induction = smt.ic3 = !options.bmcOnly;
+  smt.timeoutMs = options.smtTimeoutS * 1000u;
   checker::SmtResult out = checker::checkSafetySmt(model, smt);
   const checker::SearchResult& r = out.search;
   Formation groups = formation(options);
@@ -61,8 +72,11 @@ int runCheckSmt(const CheckOptions& options, const ir::Model& model) {
     violated = violated || p.verdict == checker::Verdict::Violated;
     undecided = undecided || p.verdict == checker::Verdict::Unknown;
   }
+  // The smt engine decides safety only: LTL properties stay unknown, so the check is not complete.
+  undecided = undecided || !model.properties.empty();
   int code = violated ? kViolated : undecided ? kLimit : kOk;
-  const std::string how = "bounded model checking to depth " + std::to_string(out.bmcDepth) + ", then k-induction";
+  const std::string how = "bounded model checking to depth " + std::to_string(out.bmcDepth) +
+                          (options.bmcOnly ? " only (--bmc-only)" : ", then k-induction and IC3");
 
   if (options.json) {
     nlohmann::json props = nlohmann::json::array();
@@ -70,8 +84,15 @@ int runCheckSmt(const CheckOptions& options, const ir::Model& model) {
       const checker::PropertyResult& p = r.properties[j];
       nlohmann::json jp = {{"name", p.name}, {"verdict", checker::verdictName(p.verdict)}, {"origin", p.origin}, {"type", "safety"}};
       if (out.inductionDepth[j] != 0) jp["inductionDepth"] = out.inductionDepth[j];
+      if (out.proof[j] != checker::SmtProof::None) jp["proof"] = proofName(out.proof[j]);
+      if (out.proof[j] == checker::SmtProof::Ic3) jp["invariantConjuncts"] = out.invariantConjuncts[j];
+      if (out.deepCounterexample[j] != 0) jp["beyondBmcDepth"] = true;
       if (p.counterexample) jp["counterexample"] = nlohmann::json::parse(checker::traceToJson(model, *p.counterexample));
       props.push_back(jp);
+    }
+    for (const ir::Property& p : model.properties) {
+      props.push_back({{"name", p.name}, {"verdict", "unknown"}, {"origin", p.origin}, {"type", "liveness"},
+                       {"note", "not checked: the smt engine decides safety properties only"}});
     }
     nlohmann::json root = {{"input", options.model.input}, {"engine", "smt"},           {"assumptions", model.assumptions},
                            {"bmcDepth", out.bmcDepth},      {"complete", r.complete}, {"seconds", r.seconds},
@@ -85,6 +106,7 @@ int runCheckSmt(const CheckOptions& options, const ir::Model& model) {
     root["groupFormation"] = formationJson;
     if (r.rangeError) root["modelError"] = nlohmann::json::parse(checker::traceToJson(model, *r.rangeError));
     if (!out.note.empty()) root["note"] = out.note;
+    if (!options.engineReason.empty()) root["engineChoice"] = options.engineReason;
     std::cout << root.dump(2) << "\n";
     return code;
   }
@@ -94,6 +116,7 @@ int runCheckSmt(const CheckOptions& options, const ir::Model& model) {
             << " rules)\n";
   std::cout << "assumptions: " << (assumptions.empty() ? "none stated" : assumptions) << "\n";
   std::cout << "engine:      smt (Z3): " << how << ", " << r.seconds << " s\n";
+  if (!options.engineReason.empty()) std::cout << "             (--engine auto: " << options.engineReason << ")\n";
   if (!groups.verdicts.empty()) std::cout << "group formation, for every crash set within the budget (Z3):\n";
   for (std::size_t b = 0; b < groups.verdicts.size(); ++b) {
     const checker::FormationVerdict& v = groups.verdicts[b];
@@ -113,18 +136,27 @@ int runCheckSmt(const CheckOptions& options, const ir::Model& model) {
   for (std::size_t j = 0; j < r.properties.size(); ++j) {
     const checker::PropertyResult& p = r.properties[j];
     std::cout << "  " << checker::verdictName(p.verdict) << "  " << p.name;
-    if (p.verdict == checker::Verdict::Proven && out.inductionDepth[j] != 0) {
+    if (out.proof[j] == checker::SmtProof::Induction) {
       std::cout << "  (proven by k-induction at k = " << out.inductionDepth[j] << ", under the assumptions above)";
+    } else if (out.proof[j] == checker::SmtProof::Ic3) {
+      std::cout << "  (proven by induction with a strengthening invariant of " << out.invariantConjuncts[j]
+                << (out.invariantConjuncts[j] == 1 ? " conjunct" : " conjuncts")
+                << " found by IC3 and checked independently, under the assumptions above)";
     } else if (p.verdict == checker::Verdict::Proven) {
       std::cout << "  (no path is longer than " << out.bmcDepth << " steps: every reachable state checked, under the assumptions above)";
     } else if (p.verdict == checker::Verdict::Unknown && !r.rangeError) {
-      std::cout << "  (holds on every path of up to " << out.bmcDepth << " steps; not proven for longer ones: no induction up to k = "
-                << out.bmcDepth + 1 << ")";
+      std::cout << "  (holds on every path of up to " << out.bmcDepth << " steps; not proven for longer ones"
+                << (options.bmcOnly ? ")" : ": no induction up to k = " + std::to_string(std::min(out.bmcDepth + 1, smt.maxInduction)) + ", IC3 undecided)");
     } else if (p.counterexample) {
       std::size_t n = p.counterexample->steps.size();
-      std::cout << "  (counterexample of " << n << (n == 1 ? " step" : " steps") << " below)";
+      std::cout << "  (counterexample of " << n << (n == 1 ? " step" : " steps") << " below"
+                << (out.deepCounterexample[j] != 0 ? ", found by IC3 beyond depth " + std::to_string(out.bmcDepth) + "; a shorter one may exist" : "")
+                << ")";
     }
     std::cout << "\n";
+  }
+  for (const ir::Property& p : model.properties) {
+    std::cout << "  unknown  " << p.name << "  (not checked: the smt engine decides safety properties only)\n";
   }
   if (!out.note.empty()) std::cout << "note:        " << out.note << "\n";
   for (const checker::PropertyResult& p : r.properties) {

@@ -42,6 +42,9 @@ struct CheckOptions {
   std::uint64_t maxMemoryMiB = 8192;
   bool json = false;
   std::string engine = "explicit";
+  bool bmcOnly = false;        // smt: bounded model checking only, no unbounded proofs
+  unsigned smtTimeoutS = 600;  // smt: per solver call (an IC3 run is one); 0: none
+  std::string engineReason;    // auto: why it chose the engine it ran (set by runCheck)
 };
 
 struct ExportOptions {

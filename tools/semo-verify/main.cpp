@@ -54,9 +54,12 @@ int main(int argc, char** argv) {
   checkCmd->add_flag("--safety-only", check.safetyOnly, "Check the invariants and deadlock freedom only, not the LTL properties");
   checkCmd->add_flag("--json", check.json, "Print the verdicts and counterexamples as JSON (specs/trace.md)");
   checkCmd->add_option("--engine", check.engine,
-                       "explicit: state-space search (default); smt: Z3, bounded model checking to --max-depth (default 20) "
-                       "and k-induction, safety properties only")
-      ->check(CLI::IsMember({"explicit", "smt"}));
+                       "explicit: state-space search (default); smt: Z3, bounded model checking to --max-depth (default 5), "
+                       "then k-induction and IC3 for unbounded proofs, safety properties only; auto: explicit when the state "
+                       "space fits its budget (2,000,000 states, whatever --max-depth says), else smt (with --max-depth for BMC)")
+      ->check(CLI::IsMember({"explicit", "smt", "auto"}));
+  checkCmd->add_flag("--bmc-only", check.bmcOnly, "With the smt engine: bounded model checking only (no k-induction, no IC3)");
+  checkCmd->add_option("--smt-timeout", check.smtTimeoutS, "With the smt engine: give up a solver call (one BMC depth, one IC3 run) after this many seconds; 0: never (default 600)");
 
   semo::cli::ExportOptions exportOptions;
   CLI::App* exportCmd = app.add_subcommand("export", "Write the mission's formal model as IR text or Promela");

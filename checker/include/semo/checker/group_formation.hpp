@@ -1,10 +1,12 @@
 #pragma once
 // Group formation for every crash set, decided with Z3: a `[[ ]]` block can be formed from the live
-// robots of its team when each arm other than `others` gets a robot of its own (a robot joins at
-// most one group; a leader block needs one leader). By Hall's theorem that fails exactly when some
-// set of arms has fewer live candidates, together, than arms. The solver looks for the smallest
-// crash set that makes this happen (minimised cardinality over Boolean crash variables), so one
-// query per block gives both the smallest breaking crash set and the largest budget tolerated.
+// robots of its team when each arm other than `others` gets robots of its own, as many as its
+// minimum size (one, or the largest `min-robots` of the group services it calls; a robot joins at
+// most one group; a leader block needs one leader). By Hall's theorem (with a demand per arm) that
+// fails exactly when some set of arms has fewer live candidates, together, than the robots those
+// arms need. The solver looks for the smallest crash set that makes this happen (minimised count of
+// crashed robots), so one query per block gives both the smallest breaking crash set and the
+// largest budget tolerated.
 #include <cstdint>
 #include <optional>
 #include <string>

@@ -1,9 +1,10 @@
 #pragma once
 // Safety on the IR with Z3 (checker/src/smt_encoding.hpp has the encoding): bounded model checking
 // finds every violation reachable within K steps, with a shortest counterexample in the explicit
-// engine's trace format; k-induction then tries to prove the invariants that were not violated for
-// every depth. A property is "proven" only by a successful induction; otherwise it holds on every
-// path of up to K steps and is reported unknown, bounded (never "proven").
+// engine's trace format; k-induction then tries to prove what was not violated for every depth, and
+// IC3 (Z3's Spacer, checker/src/smt_ic3.hpp) what k-induction could not: it finds a strengthening
+// invariant, checked independently before the property counts as proven, or a deeper
+// counterexample, rebuilt by BMC at its depth. Anything else is reported unknown, bounded.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -13,16 +14,29 @@
 namespace semo::checker {
 
 struct SmtOptions {
-  std::uint32_t maxDepth = 20;  // K: BMC explores every path of up to K steps; induction tries k <= K + 1
-  bool induction = true;
-  unsigned timeoutMs = 0;       // per solver call; 0: none
+  std::uint32_t maxDepth = 5;   // K: BMC explores every path of up to K steps; induction tries k <= K + 1
+  bool induction = true;        // k-induction after BMC
+  std::uint32_t maxInduction = 3;  // induction tries k <= min(K + 1, this)
+  bool ic3 = true;              // IC3 on what k-induction leaves open
+  unsigned timeoutMs = 0;       // per solver call (an IC3 run is one call); 0: none
+};
+
+// How a property was decided, beside its verdict.
+enum class SmtProof : std::uint8_t {
+  None,       // not proven
+  Exhausted,  // BMC found no path longer than bmcDepth: every reachable state was checked
+  Induction,  // k-induction at inductionDepth
+  Ic3,        // IC3 found an inductive strengthening (invariantConjuncts), checked independently
 };
 
 struct SmtResult {
-  SearchResult search;                        // properties as the explicit engine reports them
-  std::vector<std::uint32_t> inductionDepth;  // per property: k of its proof, or 0
-  std::uint32_t bmcDepth = 0;                 // every path of up to this many steps was covered
-  std::string note;                           // why an induction stopped, if it did
+  SearchResult search;                            // properties as the explicit engine reports them
+  std::vector<SmtProof> proof;                    // per property
+  std::vector<std::uint32_t> inductionDepth;      // per property: k of its induction, or 0
+  std::vector<std::uint32_t> invariantConjuncts;  // per property proven by IC3
+  std::vector<char> deepCounterexample;           // per property: violated beyond bmcDepth (found by IC3)
+  std::uint32_t bmcDepth = 0;                     // every path of up to this many steps was covered
+  std::string note;                               // why an unbounded proof stopped, if one did
 };
 
 SmtResult checkSafetySmt(const ir::Model& model, const SmtOptions& options);

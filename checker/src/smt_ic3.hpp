@@ -1,0 +1,30 @@
+#pragma once
+// Unbounded proofs of one safety property with IC3/PDR (Z3's Spacer engine on constrained Horn
+// clauses): Reach(s) for the initial state; Reach(s) and a step s -> s' that stays within the
+// declared ranges give Reach(s'); Reach(s) and the error condition give Error. Spacer either finds an
+// inductive invariant that excludes the error, which semo then checks on its own with a plain
+// solver (it holds initially, every step keeps it, and it rules the error out) before calling the
+// property proven, or derives the error, and returns that derivation's number of steps so that
+// bounded model checking can rebuild the counterexample at exactly that depth.
+#include <cstdint>
+#include <string>
+
+#include <z3++.h>
+
+#include "smt_encoding.hpp"
+
+namespace semo::checker::detail {
+
+struct Ic3Outcome {
+  enum class Kind { Proven, Violated, Unknown };
+  Kind kind = Kind::Unknown;
+  std::uint32_t depth = 0;      // Violated: steps from the initial state to the error
+  std::uint32_t conjuncts = 0;  // Proven: top-level conjuncts of the checked invariant
+  std::string note;             // Unknown: why
+};
+
+// `error` may mention step 0, action 0 and step 1 of `enc` (a range error is a step that leaves a
+// range). timeoutMs = 0: no limit.
+Ic3Outcome proveWithIc3(z3::context& ctx, SmtEncoding& enc, const z3::expr& error, unsigned timeoutMs);
+
+}  // namespace semo::checker::detail
