@@ -1,8 +1,11 @@
 # Bounded model checking (Z3) against the explicit engine bounded to the same depth, on one model:
 # fails unless both find the same properties violated within DEPTH steps, with counterexamples of
 # the same length (both are shortest: breadth-first search, BMC by increasing depth).
+# With -DDEPTH=full instead: the whole SMT engine (BMC, k-induction, IC3) against the complete
+# explicit search; every safety property must get the same verdict from both, and none may stay
+# unknown.
 #
-#   cmake -DEXE=semo-verify -DINPUT=model.semo|model.ir [-DSTRATEGY=strategy.xml] -DDEPTH=k
+#   cmake -DEXE=semo-verify -DINPUT=model.semo|model.ir [-DSTRATEGY=strategy.xml] -DDEPTH=k|full
 #         -P smt_agreement.cmake
 cmake_minimum_required(VERSION 3.19)  # string(JSON)
 
@@ -35,6 +38,36 @@ function(violations json out)
   list(SORT found)
   set(${out} "${found}" PARENT_SCOPE)
 endfunction()
+
+# Every safety property as NAME=VERDICT.
+function(verdicts json out)
+  set(found "")
+  string(JSON count LENGTH "${json}" properties)
+  math(EXPR last "${count} - 1")
+  foreach(i RANGE ${last})
+    string(JSON type GET "${json}" properties ${i} type)
+    if(type STREQUAL "safety")
+      string(JSON name GET "${json}" properties ${i} name)
+      string(JSON verdict GET "${json}" properties ${i} verdict)
+      list(APPEND found "${name}=${verdict}")
+    endif()
+  endforeach()
+  set(${out} "${found}" PARENT_SCOPE)
+endfunction()
+
+if(DEPTH STREQUAL "full")
+  execute_process(COMMAND ${EXE} check ${model_args} --json --no-symmetry --safety-only
+                  OUTPUT_VARIABLE explicit_json RESULT_VARIABLE explicit_code)
+  execute_process(COMMAND ${EXE} check ${model_args} --json --engine smt
+                  OUTPUT_VARIABLE smt_json RESULT_VARIABLE smt_code)
+  verdicts("${explicit_json}" explicit_verdicts)
+  verdicts("${smt_json}" smt_verdicts)
+  if(NOT explicit_verdicts STREQUAL smt_verdicts OR smt_verdicts MATCHES "=unknown")
+    message(FATAL_ERROR "smt_agreement: explicit [${explicit_verdicts}], smt [${smt_verdicts}]")
+  endif()
+  message(STATUS "smt_agreement: both decide [${smt_verdicts}]")
+  return()
+endif()
 
 execute_process(COMMAND ${EXE} check ${model_args} --json --no-symmetry --safety-only --max-depth ${DEPTH}
                 OUTPUT_VARIABLE explicit_json RESULT_VARIABLE explicit_code)
