@@ -58,7 +58,11 @@ case "$mode" in
     build build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DSEMO_FUZZ=ON
     seconds="${FUZZ_SECONDS:-300}"
     # Seed corpora: the project's own missions and strategies.
-    mkdir -p build-fuzz/corpus-fuzz_mission_parser build-fuzz/corpus-fuzz_strategy_reader build-fuzz/corpus-fuzz_ir_reader
+    mkdir -p build-fuzz/corpus-fuzz_mission_parser build-fuzz/corpus-fuzz_strategy_reader build-fuzz/corpus-fuzz_ir_reader \
+      build-fuzz/corpus-fuzz_sdf3_reader
+    for f in specs/benchmarks/sdf3/*.xml tests/diagnostics/sdf3/*.xml; do
+      cp "$f" "build-fuzz/corpus-fuzz_sdf3_reader/$(echo "$f" | tr / _)"
+    done
     for f in tests/e2e/ir/*.ir; do cp "$f" "build-fuzz/corpus-fuzz_ir_reader/$(echo "$f" | tr / _)"; done
     for f in specs/*.semo specs/examples/*/*.semo tests/diagnostics/common/*.semo; do
       cp "$f" "build-fuzz/corpus-fuzz_mission_parser/$(echo "$f" | tr / _)"
@@ -66,7 +70,7 @@ case "$mode" in
     for f in specs/examples/*/strategy.xml tests/diagnostics/common/*.xml; do
       cp "$f" "build-fuzz/corpus-fuzz_strategy_reader/$(echo "$f" | tr / _)"
     done
-    for target in fuzz_mission_parser fuzz_strategy_reader fuzz_ir_reader; do
+    for target in fuzz_mission_parser fuzz_strategy_reader fuzz_ir_reader fuzz_sdf3_reader; do
       corpus="build-fuzz/corpus-$target"
       echo "== fuzzing $target for ${seconds}s"
       ./build-fuzz/tests/fuzz/"$target" -max_total_time="$seconds" -max_len=8192 -timeout=10 \

@@ -11,7 +11,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "xml_support.hpp"
+#include "semo/frontend/xml_reader.hpp"
 
 namespace semo {
 

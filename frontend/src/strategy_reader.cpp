@@ -4,7 +4,7 @@
 #include <set>
 
 #include "semo/frontend/strategy.hpp"
-#include "xml_support.hpp"
+#include "semo/frontend/xml_reader.hpp"
 
 namespace semo::strategy {
 

@@ -1,4 +1,4 @@
-#include "xml_support.hpp"
+#include "semo/frontend/xml_reader.hpp"
 
 #include <charconv>
 #include <cmath>

@@ -18,6 +18,7 @@
 #include <sstream>
 
 #include "semo/frontend/robot_catalog.hpp"
+#include "semo/sdf/sdf3_xml.hpp"
 #include "semo/semantics/load.hpp"
 
 namespace fs = std::filesystem;
@@ -68,7 +69,7 @@ const char* name(semo::Severity s) {
 
 std::vector<fs::path> cases() {
   std::vector<fs::path> out;
-  for (const char* folder : {"mission", "strategy", "urdf"}) {
+  for (const char* folder : {"mission", "strategy", "urdf", "sdf3"}) {
     fs::path dir = fs::path(SEMO_DIAGNOSTICS_DIR) / folder;
     if (!fs::exists(dir)) continue;
     for (const auto& entry : fs::directory_iterator(dir)) out.push_back(entry.path());
@@ -95,6 +96,11 @@ TEST_P(DiagnosticCase, ReportsExactlyTheExpectedDiagnostics) {
   } else if (kind == "strategy") {
     fs::path mission = dir / directive(text, "mission", "../common/mission.semo");
     semo::loadMission({mission.lexically_normal().string(), file.string(), std::nullopt}, sources, diags);
+  } else if (kind == "sdf3") {
+    std::string error;
+    semo::FileId id = sources.load(file.string(), error);
+    ASSERT_TRUE(error.empty()) << error;
+    EXPECT_FALSE(semo::sdf::readSdf3(sources, id, diags).has_value()) << "a malformed graph must not be returned";
   } else {
     semo::loadRobotType(sources, file.string(), {}, diags);
   }

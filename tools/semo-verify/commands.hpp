@@ -54,7 +54,13 @@ struct ExportOptions {
   std::optional<std::string> output;
 };
 
+struct SdfOptions {
+  std::string sdf3;  // a graph in SDF3's XML format
+  bool json = false;
+};
+
 int runParse(const ParseOptions& options);
+int runSdf(const SdfOptions& options);
 int runCheck(const CheckOptions& options);
 // `check --engine smt` on a model already built (check_smt.cpp).
 int runCheckSmt(const CheckOptions& options, const ir::Model& model);

@@ -72,6 +72,11 @@ int main(int argc, char** argv) {
                                   "With --promela: no hidden variables, for pan -DBFS (then -m bounds the depth as --max-depth does)");
   exportCmd->add_option("--output,-o", exportOptions.output, "Write to this file (default: standard output)");
 
+  semo::cli::SdfOptions sdfOptions;
+  CLI::App* sdfCmd = app.add_subcommand("sdf", "Analyse a dataflow graph: consistency, repetition vector, deadlock freedom, a schedule");
+  sdfCmd->add_option("--sdf3", sdfOptions.sdf3, "A graph in SDF3's XML format")->required();
+  sdfCmd->add_flag("--json", sdfOptions.json, "Print the analysis as JSON");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -88,5 +93,6 @@ int main(int argc, char** argv) {
   if (*lintCmd) return semo::cli::runLint(lint);
   if (*checkCmd) return semo::cli::runCheck(check);
   if (*exportCmd) return semo::cli::runExport(exportOptions);
+  if (*sdfCmd) return semo::cli::runSdf(sdfOptions);
   return semo::cli::kBadInput;
 }

@@ -1,5 +1,5 @@
 #pragma once
-// Positions and checked attribute access for XML inputs (strategies and URDF files). tinyxml2 gives
+// Positions and checked attribute access for XML inputs (strategies, URDF files, SDF3 graphs). tinyxml2 gives
 // element lines only; columns are recovered from the source text so that carets point at the
 // element or the attribute value.
 #include <tinyxml2.h>
