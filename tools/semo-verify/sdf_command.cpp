@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "semo/sdf/consistency.hpp"
 #include "semo/sdf/sdf3_xml.hpp"
+#include "semo/sdf/throughput.hpp"
 
 namespace semo::cli {
 
@@ -26,6 +27,8 @@ int runSdf(const SdfOptions& options) {
   sdf::Iteration it;
   if (q.consistent()) it = sdf::runIteration(*g, q.firings);
   const bool sound = q.consistent() && it.deadlockFree;
+  sdf::ThroughputResult tp;
+  if (sound) tp = sdf::throughput(*g, q.firings);
   const int code = sound ? kOk : it.error.empty() ? kViolated : kLimit;
 
   if (options.json) {
@@ -43,6 +46,8 @@ int runSdf(const SdfOptions& options) {
       nlohmann::json schedule = nlohmann::json::array();
       for (const sdf::FiringRun& run : it.schedule) schedule.push_back({{"actor", g->actors[run.actor].name}, {"times", run.times}});
       root["schedule"] = schedule;
+      if (sound && tp.error.empty()) root["period"] = {{"num", tp.period.num}, {"den", tp.period.den}, {"states", tp.states}};
+      else if (sound) root["periodError"] = tp.error;
     }
     std::cout << root.dump(2) << "\n";
     return code;
@@ -60,6 +65,12 @@ int runSdf(const SdfOptions& options) {
     std::cout << "  unknown  deadlock_freedom  (" << it.error << ")\n";
   } else if (it.deadlockFree) {
     std::cout << "  proven  deadlock_freedom  (one iteration runs from the initial tokens: " << sdf::scheduleText(*g, it.schedule) << ")\n";
+    if (tp.error.empty()) {
+      std::cout << "period:      " << tp.period.num << (tp.period.den == 1 ? "" : "/" + std::to_string(tp.period.den))
+                << " time units per iteration, self-timed with unbounded channels (" << tp.states << " states)\n";
+    } else {
+      std::cout << "period:      not computed (" << tp.error << ")\n";
+    }
   } else {
     std::cout << "  VIOLATED  deadlock_freedom  ("
               << (it.schedule.empty() ? "no actor can fire from the initial tokens"
