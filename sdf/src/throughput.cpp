@@ -107,7 +107,11 @@ class SelfTimed {
       }
     }
     active_.assign(actors_.size(), {});
-    std::unordered_map<std::vector<std::int64_t>, std::pair<std::int64_t, std::int64_t>, StateHash> seen;
+    struct Seen {
+      std::int64_t time, completed, step;
+    };
+    std::unordered_map<std::vector<std::int64_t>, Seen, StateHash> seen;
+    lastBlocked_.assign(m, -1);
     std::int64_t time = 0;
     std::vector<std::int64_t> key;
     for (;;) {
@@ -116,6 +120,7 @@ class SelfTimed {
       if (!busy) {
         out.deadlock = true;
         out.states = seen.size();
+        blockedSince(step_, out);
         return out;
       }
       key = tokens_;
@@ -126,11 +131,12 @@ class SelfTimed {
         key.push_back(static_cast<std::int64_t>(a.size()));
         key.insert(key.end(), a.begin(), a.end());
       }
-      auto [it, fresh] = seen.try_emplace(key, time, completedRef_);
+      auto [it, fresh] = seen.try_emplace(key, Seen{time, completedRef_, step_});
       if (!fresh) {
         // Whole iterations lie between two equal states of a consistent connected graph.
-        std::int64_t iterations = (completedRef_ - it->second.second) / q_[actors_[0]];
-        std::int64_t elapsed = time - it->second.first;
+        std::int64_t iterations = (completedRef_ - it->second.completed) / q_[actors_[0]];
+        std::int64_t elapsed = time - it->second.time;
+        blockedSince(it->second.step, out);
         std::int64_t d = std::gcd(elapsed, iterations);
         out.period = {elapsed / d, iterations / d};
         out.states = seen.size();
@@ -141,6 +147,7 @@ class SelfTimed {
         out.states = seen.size();
         return out;
       }
+      ++step_;
       std::int64_t step = INT64_MAX;
       for (const std::vector<std::int64_t>& a : active_) {
         if (!a.empty()) step = std::min(step, a.front());
@@ -172,8 +179,12 @@ class SelfTimed {
       for (std::size_t a = 0; a < actors_.size(); ++a) {
         std::int64_t times = INT64_MAX;
         for (std::size_t i : inputs_[a]) times = std::min(times, tokens_[i] / g_.channels[channels_[i]].consumption);
+        const std::int64_t byTokens = times;
         for (std::size_t i : outputs_[a]) {
-          if (space_[i] >= 0) times = std::min(times, space_[i] / g_.channels[channels_[i]].production);
+          if (space_[i] < 0) continue;
+          std::int64_t bySpace = space_[i] / g_.channels[channels_[i]].production;
+          if (bySpace < byTokens) lastBlocked_[i] = step_;
+          times = std::min(times, bySpace);
         }
         if (times == 0) continue;
         if (times > kMaxConcurrent) {
@@ -204,6 +215,14 @@ class SelfTimed {
     return true;
   }
 
+  // The channels that held an actor back at or after step `from`, as global channel flags.
+  void blockedSince(std::int64_t from, ThroughputResult& out) const {
+    out.spaceBlocked.assign(g_.channels.size(), 0);
+    for (std::size_t i = 0; i < channels_.size(); ++i) {
+      if (lastBlocked_[i] >= from) out.spaceBlocked[channels_[i]] = 1;
+    }
+  }
+
   void finish(std::size_t a, std::int64_t times) {
     for (std::size_t i : outputs_[a]) tokens_[i] += times * g_.channels[channels_[i]].production;
     for (std::size_t i : inputs_[a]) {
@@ -224,12 +243,15 @@ class SelfTimed {
   std::vector<std::vector<std::int64_t>> active_;           // per local actor: remaining times, sorted
   std::int64_t completedRef_ = 0;                           // firings finished by the component's first actor
   std::int64_t zeroTimeRounds_ = 0;
+  std::int64_t step_ = 0;                                   // states visited so far
+  std::vector<std::int64_t> lastBlocked_;                   // per local channel: last step its space held an actor back
 };
 
 }  // namespace
 
 ThroughputResult throughput(const Graph& g, const std::vector<std::int64_t>& q, const ThroughputOptions& options) {
   ThroughputResult slowest;
+  slowest.spaceBlocked.assign(g.channels.size(), 0);
   bool first = true;
   for (const auto& [actors, channels] : components(g, options)) {
     // An actor alone, with nothing to wait for (no self-loop), limits nothing: it may fire at once
@@ -257,8 +279,12 @@ ThroughputResult throughput(const Graph& g, const std::vector<std::int64_t>& q, 
       r.states = slowest.states;
       return r;
     }
-    if (first || static_cast<Wide>(r.period.num) * slowest.period.den > static_cast<Wide>(slowest.period.num) * r.period.den) {
+    Wide mine = static_cast<Wide>(r.period.num) * slowest.period.den, theirs = static_cast<Wide>(slowest.period.num) * r.period.den;
+    if (first || mine > theirs) {
       slowest.period = r.period;
+      slowest.spaceBlocked = r.spaceBlocked;
+    } else if (mine == theirs) {
+      for (std::size_t c = 0; c < g.channels.size(); ++c) slowest.spaceBlocked[c] |= r.spaceBlocked[c];
     }
     first = false;
   }

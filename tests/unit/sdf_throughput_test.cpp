@@ -3,6 +3,7 @@
 // distributions SDF3 reports for samplerate.
 #include <gtest/gtest.h>
 
+#include "semo/sdf/buffers.hpp"
 #include "semo/sdf/consistency.hpp"
 #include "semo/sdf/sdf3_xml.hpp"
 #include "semo/sdf/throughput.hpp"
@@ -97,6 +98,46 @@ TEST(SdfThroughput, SamplerateWithSdf3sBufferDistributions) {
   smallest.capacities[0] = 0;
   RepetitionVector q = repetitionVector(g);
   EXPECT_TRUE(throughput(g, q.firings, smallest).deadlock);
+}
+
+}  // namespace
+}  // namespace semo::sdf
+
+namespace semo::sdf {
+namespace {
+
+// Each Pareto point as (total, period) — a period of 0 for a deadlocked distribution.
+std::vector<std::pair<std::int64_t, std::int64_t>> front(const std::string& name) {
+  Graph g = benchmark(name);
+  RepetitionVector q = repetitionVector(g);
+  ParetoFront f = bufferParetoFront(g, q.firings, 100'000);
+  EXPECT_TRUE(f.error.empty()) << f.error;
+  std::vector<std::pair<std::int64_t, std::int64_t>> out;
+  for (const BufferPoint& p : f.points) {
+    EXPECT_EQ(p.period.den, 1);
+    out.push_back({p.total, p.deadlock ? 0 : p.period.num});
+  }
+  return out;
+}
+
+TEST(SdfBuffers, TheSmallestCapacityOfAChannelAlone) {
+  // p + c - gcd(p, c) + d mod gcd, at least d.
+  EXPECT_EQ(smallestCapacity({"x", 0, 1, 2, 3, 0, {}}), 4);
+  EXPECT_EQ(smallestCapacity({"x", 0, 1, 4, 6, 1, {}}), 9);
+  EXPECT_EQ(smallestCapacity({"x", 0, 1, 1, 1, 7, {}}), 7);
+  EXPECT_EQ(smallestCapacity({"x", 0, 0, 1, 1, 1, {}}), 0);  // a self-loop is never bounded
+}
+
+TEST(SdfBuffers, Sdf3ParetoFronts) {
+  // specs/benchmarks/sdf3/README.md: SDF3's smallest totals with throughput and at maximal
+  // throughput, and the number of Pareto points (samplerate 3, modem 3, satellite 2).
+  EXPECT_EQ(front("samplerate"), (std::vector<std::pair<std::int64_t, std::int64_t>>{{32, 1088}, {33, 1029}, {34, 960}}));
+  EXPECT_EQ(front("modem"), (std::vector<std::pair<std::int64_t, std::int64_t>>{{38, 32}, {39, 18}, {40, 16}}));
+  EXPECT_EQ(front("satellite"), (std::vector<std::pair<std::int64_t, std::int64_t>>{{1542, 1320}, {1544, 1056}}));
+  std::vector<std::pair<std::int64_t, std::int64_t>> h263 = front("h263decoder");
+  ASSERT_FALSE(h263.empty());
+  EXPECT_EQ(h263.front(), (std::pair<std::int64_t, std::int64_t>{1189, 633253}));  // throughput 1.57915e-06, as SDF3
+  EXPECT_EQ(h263.back(), (std::pair<std::int64_t, std::int64_t>{1224, 332046}));
 }
 
 }  // namespace

@@ -57,6 +57,7 @@ struct ExportOptions {
 struct SdfOptions {
   std::string sdf3;  // a graph in SDF3's XML format
   bool json = false;
+  bool buffers = false;  // also the throughput-buffer Pareto front
 };
 
 int runParse(const ParseOptions& options);

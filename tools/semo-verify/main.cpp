@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
   CLI::App* sdfCmd = app.add_subcommand("sdf", "Analyse a dataflow graph: consistency, repetition vector, deadlock freedom, a schedule");
   sdfCmd->add_option("--sdf3", sdfOptions.sdf3, "A graph in SDF3's XML format")->required();
   sdfCmd->add_flag("--json", sdfOptions.json, "Print the analysis as JSON");
+  sdfCmd->add_flag("--buffers", sdfOptions.buffers, "Also explore buffer capacities: the throughput-buffer Pareto front");
 
   try {
     app.parse(argc, argv);

@@ -4,11 +4,33 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "semo/sdf/buffers.hpp"
 #include "semo/sdf/consistency.hpp"
 #include "semo/sdf/sdf3_xml.hpp"
 #include "semo/sdf/throughput.hpp"
 
 namespace semo::cli {
+
+namespace {
+
+std::string periodText(const sdf::Period& p) { return std::to_string(p.num) + (p.den == 1 ? "" : "/" + std::to_string(p.den)); }
+
+void printFront(const sdf::Graph& g, const sdf::ParetoFront& front) {
+  std::cout << "buffers:     throughput-buffer Pareto front (" << front.distributions << " distributions explored"
+            << (front.error.empty() ? "" : "; NOT complete: " + front.error) << ")\n";
+  for (const sdf::BufferPoint& p : front.points) {
+    std::cout << "  total " << p.total << ": " << (p.deadlock ? "deadlock" : "period " + periodText(p.period)) << "  (";
+    bool firstChannel = true;
+    for (std::size_t c = 0; c < g.channels.size(); ++c) {
+      if (g.channels[c].selfLoop()) continue;
+      std::cout << (firstChannel ? "" : " ") << g.channels[c].name << " " << p.capacities[c];
+      firstChannel = false;
+    }
+    std::cout << ")\n";
+  }
+}
+
+}  // namespace
 
 int runSdf(const SdfOptions& options) {
   SourceManager sources;
@@ -66,11 +88,12 @@ int runSdf(const SdfOptions& options) {
   } else if (it.deadlockFree) {
     std::cout << "  proven  deadlock_freedom  (one iteration runs from the initial tokens: " << sdf::scheduleText(*g, it.schedule) << ")\n";
     if (tp.error.empty()) {
-      std::cout << "period:      " << tp.period.num << (tp.period.den == 1 ? "" : "/" + std::to_string(tp.period.den))
-                << " time units per iteration, self-timed with unbounded channels (" << tp.states << " states)\n";
+      std::cout << "period:      " << periodText(tp.period) << " time units per iteration, self-timed with unbounded channels ("
+                << tp.states << " states)\n";
     } else {
       std::cout << "period:      not computed (" << tp.error << ")\n";
     }
+    if (options.buffers && tp.error.empty()) printFront(*g, sdf::bufferParetoFront(*g, q.firings));
   } else {
     std::cout << "  VIOLATED  deadlock_freedom  ("
               << (it.schedule.empty() ? "no actor can fire from the initial tokens"

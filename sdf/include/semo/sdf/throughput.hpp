@@ -25,6 +25,10 @@ struct ThroughputResult {
   Period period;                  // when not deadlocked
   std::uint64_t states = 0;       // states stored before the first repetition
   std::string error;              // not decided (a limit, or counts past 64 bits)
+  // Per channel: in the periodic part of the execution (or in the deadlocked state) some actor had
+  // the tokens to fire more often than the channel's free space allowed. Only enlarging such a
+  // channel can raise the throughput (the buffer exploration, buffers.hpp, relies on this).
+  std::vector<char> spaceBlocked;
 };
 
 struct ThroughputOptions {
