@@ -58,6 +58,7 @@ struct SdfOptions {
   std::string sdf3;  // a graph in SDF3's XML format
   bool json = false;
   bool buffers = false;  // also the throughput-buffer Pareto front
+  std::uint64_t maxDistributions = 200'000;
 };
 
 int runParse(const ParseOptions& options);

@@ -51,7 +51,10 @@ int runSdf(const SdfOptions& options) {
   const bool sound = q.consistent() && it.deadlockFree;
   sdf::ThroughputResult tp;
   if (sound) tp = sdf::throughput(*g, q.firings);
-  const int code = sound ? kOk : it.error.empty() ? kViolated : kLimit;
+  std::optional<sdf::ParetoFront> front;
+  if (sound && tp.error.empty() && options.buffers) front = sdf::bufferParetoFront(*g, q.firings, options.maxDistributions);
+  const bool partial = !it.error.empty() || (sound && !tp.error.empty()) || (front && !front->error.empty());
+  const int code = sound ? (partial ? kLimit : kOk) : it.error.empty() ? kViolated : kLimit;
 
   if (options.json) {
     nlohmann::json root = {{"input", options.sdf3}, {"graph", g->name}, {"actors", g->actors.size()},
@@ -70,6 +73,20 @@ int runSdf(const SdfOptions& options) {
       root["schedule"] = schedule;
       if (sound && tp.error.empty()) root["period"] = {{"num", tp.period.num}, {"den", tp.period.den}, {"states", tp.states}};
       else if (sound) root["periodError"] = tp.error;
+      if (front) {
+        nlohmann::json points = nlohmann::json::array();
+        for (const sdf::BufferPoint& p : front->points) {
+          nlohmann::json caps = nlohmann::json::object();
+          for (std::size_t c = 0; c < g->channels.size(); ++c) {
+            if (!g->channels[c].selfLoop()) caps[g->channels[c].name] = p.capacities[c];
+          }
+          nlohmann::json point = {{"total", p.total}, {"deadlock", p.deadlock}, {"capacities", caps}};
+          if (!p.deadlock) point["period"] = {{"num", p.period.num}, {"den", p.period.den}};
+          points.push_back(point);
+        }
+        root["paretoFront"] = {{"points", points}, {"distributions", front->distributions}, {"complete", front->error.empty()}};
+        if (!front->error.empty()) root["paretoFront"]["error"] = front->error;
+      }
     }
     std::cout << root.dump(2) << "\n";
     return code;
@@ -93,7 +110,7 @@ int runSdf(const SdfOptions& options) {
     } else {
       std::cout << "period:      not computed (" << tp.error << ")\n";
     }
-    if (options.buffers && tp.error.empty()) printFront(*g, sdf::bufferParetoFront(*g, q.firings));
+    if (front) printFront(*g, *front);
   } else {
     std::cout << "  VIOLATED  deadlock_freedom  ("
               << (it.schedule.empty() ? "no actor can fire from the initial tokens"
