@@ -191,3 +191,78 @@ std::optional<Graph> readSdf3(const SourceManager& sources, FileId file, Diagnos
 }
 
 }  // namespace semo::sdf
+
+namespace semo::sdf {
+
+namespace {
+
+// Text for an XML attribute value.
+std::string escaped(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+// Text for a Graphviz quoted string.
+std::string quoted(const std::string& text) {
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+}  // namespace
+
+std::string writeSdf3(const Graph& g) {
+  // Ports are named after the channel and its end: unique per actor, whatever the channels' names.
+  std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<sdf3 type=\"sdf\" version=\"1.0\">\n";
+  out += "  <applicationGraph name=\"" + escaped(g.name) + "\">\n    <sdf name=\"" + escaped(g.name) + "\" type=\"" + escaped(g.name) + "\">\n";
+  for (ActorId a = 0; a < g.actors.size(); ++a) {
+    out += "      <actor name=\"" + escaped(g.actors[a].name) + "\" type=\"" + escaped(g.actors[a].name) + "\">\n";
+    for (std::size_t c = 0; c < g.channels.size(); ++c) {
+      const Channel& ch = g.channels[c];
+      if (ch.source == a) out += "        <port name=\"out" + std::to_string(c) + "\" type=\"out\" rate=\"" + std::to_string(ch.production) + "\"/>\n";
+      if (ch.target == a) out += "        <port name=\"in" + std::to_string(c) + "\" type=\"in\" rate=\"" + std::to_string(ch.consumption) + "\"/>\n";
+    }
+    out += "      </actor>\n";
+  }
+  for (std::size_t c = 0; c < g.channels.size(); ++c) {
+    const Channel& ch = g.channels[c];
+    out += "      <channel name=\"" + escaped(ch.name) + "\" srcActor=\"" + escaped(g.actors[ch.source].name) + "\" srcPort=\"out" +
+           std::to_string(c) + "\" dstActor=\"" + escaped(g.actors[ch.target].name) + "\" dstPort=\"in" + std::to_string(c) + "\"";
+    if (ch.initialTokens != 0) out += " initialTokens=\"" + std::to_string(ch.initialTokens) + "\"";
+    out += "/>\n";
+  }
+  out += "    </sdf>\n    <sdfProperties>\n";
+  for (const Actor& a : g.actors) {
+    out += "      <actorProperties actor=\"" + escaped(a.name) + "\">\n        <processor type=\"p1\" default=\"true\">\n";
+    out += "          <executionTime time=\"" + std::to_string(a.executionTime) + "\"/>\n        </processor>\n      </actorProperties>\n";
+  }
+  out += "    </sdfProperties>\n  </applicationGraph>\n</sdf3>\n";
+  return out;
+}
+
+std::string toDot(const Graph& g) {
+  std::string out = "digraph " + quoted(g.name) + " {\n  node [shape=box];\n";
+  for (ActorId a = 0; a < g.actors.size(); ++a) {
+    out += "  a" + std::to_string(a) + " [label=" + quoted(g.actors[a].name + " (" + std::to_string(g.actors[a].executionTime) + ")") + "];\n";
+  }
+  for (const Channel& ch : g.channels) {
+    std::string label = ch.name + ": " + std::to_string(ch.production) + " -> " + std::to_string(ch.consumption);
+    if (ch.initialTokens != 0) label += " (" + std::to_string(ch.initialTokens) + " tokens)";
+    out += "  a" + std::to_string(ch.source) + " -> a" + std::to_string(ch.target) + " [label=" + quoted(label) + "];\n";
+  }
+  return out + "}\n";
+}
+
+}  // namespace semo::sdf
