@@ -69,23 +69,6 @@ std::string fairnessLine(const ir::Model& m) {
   return out;
 }
 
-// Writes through a temporary file and renames it, so that a failure never leaves half a file.
-bool writeAtomically(const std::string& path, const std::string& text) {
-  std::string temporary = path + ".partial";
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    out << text;
-    if (!out) {
-      std::filesystem::remove(temporary);
-      return false;
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(temporary, path, ec);
-  if (ec) std::filesystem::remove(temporary);
-  return !ec;
-}
-
 }  // namespace
 
 // --engine auto: the explicit engine decides everything (liveness too) when the state space fits a

@@ -1,5 +1,7 @@
 #include "commands.hpp"
 
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 
 #include "semo/frontend/ast_json.hpp"
@@ -55,5 +57,23 @@ int runLint(const LintOptions& options) {
             << plural(model->catalog.types().size(), "robot type") << "\n";
   return kOk;
 }
+
+// Writes through a temporary file and renames it, so that a failure never leaves half a file.
+bool writeAtomically(const std::string& path, const std::string& text) {
+  std::string temporary = path + ".partial";
+  {
+    std::ofstream out(temporary, std::ios::binary);
+    out << text;
+    if (!out) {
+      std::filesystem::remove(temporary);
+      return false;
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(temporary, path, ec);
+  if (ec) std::filesystem::remove(temporary);
+  return !ec;
+}
+
 
 }  // namespace semo::cli

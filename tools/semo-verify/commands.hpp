@@ -59,7 +59,11 @@ struct SdfOptions {
   bool json = false;
   bool buffers = false;  // also the throughput-buffer Pareto front
   std::uint64_t maxDistributions = 200'000;
+  std::optional<std::string> dotOut, sdf3Out;  // write the graph for Graphviz / in SDF3's format
 };
+
+// Writes through a temporary file and renames it, so that a failure never leaves half a file.
+bool writeAtomically(const std::string& path, const std::string& text);
 
 int runParse(const ParseOptions& options);
 int runSdf(const SdfOptions& options);

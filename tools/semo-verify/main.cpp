@@ -77,6 +77,8 @@ int main(int argc, char** argv) {
   sdfCmd->add_option("--sdf3", sdfOptions.sdf3, "A graph in SDF3's XML format")->required();
   sdfCmd->add_flag("--json", sdfOptions.json, "Print the analysis as JSON");
   sdfCmd->add_flag("--buffers", sdfOptions.buffers, "Also explore buffer capacities: the throughput-buffer Pareto front");
+  sdfCmd->add_option("--dot", sdfOptions.dotOut, "Write the graph for Graphviz to this file");
+  sdfCmd->add_option("--write-sdf3", sdfOptions.sdf3Out, "Write the graph in SDF3's format to this file");
   sdfCmd->add_option("--max-distributions", sdfOptions.maxDistributions,
                      "With --buffers: stop after this many buffer distributions (default 200000; exit 3, partial front)");
 
