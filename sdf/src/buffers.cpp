@@ -1,5 +1,6 @@
 #include "semo/sdf/buffers.hpp"
 
+#include <algorithm>
 #include <numeric>
 #include <queue>
 #include <set>
@@ -45,6 +46,7 @@ ParetoFront bufferParetoFront(const Graph& g, const std::vector<std::int64_t>& q
   queued.insert(start);
   ThroughputOptions options;
   options.capacities.resize(m);
+  options.trackDependencies = true;
   bool haveThroughput = false;
   Period bestSoFar;
   while (!frontier.empty()) {
@@ -70,8 +72,13 @@ ParetoFront bufferParetoFront(const Graph& g, const std::vector<std::int64_t>& q
       bestSoFar = r.period;
       if (!slower(r.period, out.best)) return out;  // the maximal throughput is reached
     }
+    // Deadlocked: the channels whose space held an actor back; else only the storage dependencies
+    // on a critical cycle (if there are none, which should not happen below the best throughput,
+    // every blocked channel, to stay exact).
+    const std::vector<char>* enlarge = &r.spaceBlocked;
+    if (!r.deadlock && std::find(r.spaceCritical.begin(), r.spaceCritical.end(), 1) != r.spaceCritical.end()) enlarge = &r.spaceCritical;
     for (std::size_t c = 0; c < m; ++c) {
-      if (!r.spaceBlocked[c]) continue;
+      if (!(*enlarge)[c]) continue;
       std::vector<std::int64_t> larger = caps;
       larger[c] += std::gcd(g.channels[c].production, g.channels[c].consumption);
       if (queued.insert(larger).second) frontier.push({size + (larger[c] - caps[c]), std::move(larger)});

@@ -112,6 +112,8 @@ class SelfTimed {
     };
     std::unordered_map<std::vector<std::int64_t>, Seen, StateHash> seen;
     lastBlocked_.assign(m, -1);
+    tokenRefresh_.assign(m, -1);
+    spaceRefresh_.assign(m, -1);
     std::int64_t time = 0;
     std::vector<std::int64_t> key;
     for (;;) {
@@ -137,6 +139,7 @@ class SelfTimed {
         std::int64_t iterations = (completedRef_ - it->second.completed) / q_[actors_[0]];
         std::int64_t elapsed = time - it->second.time;
         blockedSince(it->second.step, out);
+        if (options_.trackDependencies) criticalSince(it->second.step, out);
         std::int64_t d = std::gcd(elapsed, iterations);
         out.period = {elapsed / d, iterations / d};
         out.states = seen.size();
@@ -193,6 +196,16 @@ class SelfTimed {
           return false;
         }
         changed = true;
+        if (options_.trackDependencies) {
+          // What arrived at this instant and let the firing start: tokens (from the producer) or
+          // space (freed by the consumer).
+          for (std::size_t i : inputs_[a]) {
+            if (tokenRefresh_[i] == step_) dependencies_.push_back({local(g_.channels[channels_[i]].source), a, SIZE_MAX, step_});
+          }
+          for (std::size_t i : outputs_[a]) {
+            if (space_[i] >= 0 && spaceRefresh_[i] == step_) dependencies_.push_back({local(g_.channels[channels_[i]].target), a, i, step_});
+          }
+        }
         for (std::size_t i : inputs_[a]) tokens_[i] -= times * g_.channels[channels_[i]].consumption;
         for (std::size_t i : outputs_[a]) {
           if (space_[i] >= 0) space_[i] -= times * g_.channels[channels_[i]].production;
@@ -215,6 +228,65 @@ class SelfTimed {
     return true;
   }
 
+  std::size_t local(ActorId global) const {
+    return static_cast<std::size_t>(std::find(actors_.begin(), actors_.end(), global) - actors_.begin());
+  }
+
+  // The storage dependencies of step `from` on that lie on a cycle of dependencies (Tarjan over the
+  // local actors), as global channel flags.
+  void criticalSince(std::int64_t from, ThroughputResult& out) const {
+    const std::size_t n = actors_.size();
+    std::vector<std::vector<std::size_t>> next(n);
+    for (const Dependency& d : dependencies_) {
+      if (d.step >= from) next[d.from].push_back(d.to);
+    }
+    std::vector<std::size_t> index(n, SIZE_MAX), low(n, 0), component(n, SIZE_MAX), size;
+    std::vector<char> onStack(n, 0);
+    std::vector<std::size_t> stack;
+    std::vector<std::pair<std::size_t, std::size_t>> calls;
+    std::size_t counter = 0;
+    for (std::size_t root = 0; root < n; ++root) {
+      if (index[root] != SIZE_MAX) continue;
+      calls.push_back({root, 0});
+      while (!calls.empty()) {
+        auto& [v, k] = calls.back();
+        if (k == 0 && index[v] == SIZE_MAX) {
+          index[v] = low[v] = counter++;
+          stack.push_back(v);
+          onStack[v] = 1;
+        }
+        if (k < next[v].size()) {
+          std::size_t w = next[v][k++];
+          if (index[w] == SIZE_MAX) calls.push_back({w, 0});
+          else if (onStack[w]) low[v] = std::min(low[v], index[w]);
+          continue;
+        }
+        if (low[v] == index[v]) {
+          std::size_t w = 0, members = 0;
+          do {
+            w = stack.back();
+            stack.pop_back();
+            onStack[w] = 0;
+            component[w] = size.size();
+            ++members;
+          } while (w != v);
+          size.push_back(members);
+        }
+        std::size_t done = v;
+        calls.pop_back();
+        if (!calls.empty()) low[calls.back().first] = std::min(low[calls.back().first], low[done]);
+      }
+    }
+    out.spaceCritical.assign(g_.channels.size(), 0);
+    for (const Dependency& d : dependencies_) {
+      if (d.step < from || d.channel == SIZE_MAX || component[d.from] != component[d.to]) continue;
+      if (d.from != d.to && size[component[d.from]] < 2) continue;
+      // Space that arrived as the firing started but had not held it back is no dependency.
+      if (lastBlocked_[d.channel] < from) continue;
+      out.spaceCritical[channels_[d.channel]] = 1;
+    }
+  }
+
   // The channels that held an actor back at or after step `from`, as global channel flags.
   void blockedSince(std::int64_t from, ThroughputResult& out) const {
     out.spaceBlocked.assign(g_.channels.size(), 0);
@@ -224,9 +296,14 @@ class SelfTimed {
   }
 
   void finish(std::size_t a, std::int64_t times) {
-    for (std::size_t i : outputs_[a]) tokens_[i] += times * g_.channels[channels_[i]].production;
+    for (std::size_t i : outputs_[a]) {
+      tokens_[i] += times * g_.channels[channels_[i]].production;
+      tokenRefresh_[i] = step_;
+    }
     for (std::size_t i : inputs_[a]) {
-      if (space_[i] >= 0) space_[i] += times * g_.channels[channels_[i]].consumption;
+      if (space_[i] < 0) continue;
+      space_[i] += times * g_.channels[channels_[i]].consumption;
+      spaceRefresh_[i] = step_;
     }
     if (a == 0) completedRef_ += times;
   }
@@ -245,6 +322,12 @@ class SelfTimed {
   std::int64_t zeroTimeRounds_ = 0;
   std::int64_t step_ = 0;                                   // states visited so far
   std::vector<std::int64_t> lastBlocked_;                   // per local channel: last step its space held an actor back
+  std::vector<std::int64_t> tokenRefresh_, spaceRefresh_;   // per local channel: last step tokens / space arrived
+  struct Dependency {
+    std::size_t from, to, channel;  // local actors; channel: local storage channel, SIZE_MAX for tokens
+    std::int64_t step;
+  };
+  std::vector<Dependency> dependencies_;
 };
 
 }  // namespace
@@ -252,6 +335,7 @@ class SelfTimed {
 ThroughputResult throughput(const Graph& g, const std::vector<std::int64_t>& q, const ThroughputOptions& options) {
   ThroughputResult slowest;
   slowest.spaceBlocked.assign(g.channels.size(), 0);
+  slowest.spaceCritical.assign(g.channels.size(), 0);
   bool first = true;
   for (const auto& [actors, channels] : components(g, options)) {
     // An actor alone, with nothing to wait for (no self-loop), limits nothing: it may fire at once
@@ -283,8 +367,13 @@ ThroughputResult throughput(const Graph& g, const std::vector<std::int64_t>& q, 
     if (first || mine > theirs) {
       slowest.period = r.period;
       slowest.spaceBlocked = r.spaceBlocked;
+      if (!r.spaceCritical.empty()) slowest.spaceCritical = r.spaceCritical;
+      else slowest.spaceCritical.assign(g.channels.size(), 0);
     } else if (mine == theirs) {
-      for (std::size_t c = 0; c < g.channels.size(); ++c) slowest.spaceBlocked[c] |= r.spaceBlocked[c];
+      for (std::size_t c = 0; c < g.channels.size(); ++c) {
+        slowest.spaceBlocked[c] |= r.spaceBlocked[c];
+        if (!r.spaceCritical.empty()) slowest.spaceCritical[c] |= r.spaceCritical[c];
+      }
     }
     first = false;
   }
