@@ -252,7 +252,7 @@ std::string writeSdf3(const Graph& g) {
   return out;
 }
 
-std::string toDot(const Graph& g) {
+std::string toGraphviz(const Graph& g) {
   std::string out = "digraph " + quoted(g.name) + " {\n  node [shape=box];\n";
   for (ActorId a = 0; a < g.actors.size(); ++a) {
     out += "  a" + std::to_string(a) + " [label=" + quoted(g.actors[a].name + " (" + std::to_string(g.actors[a].executionTime) + ")") + "];\n";

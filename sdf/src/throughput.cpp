@@ -18,24 +18,17 @@ struct StateHash {
   }
 };
 
-// The strongly connected components (Tarjan's algorithm, iterative), each with the channels inside
-// it. A bounded channel also leads back from its target to its source (its free space flows that
-// way). Only these limit the throughput: with unbounded channels, a component downstream of a
-// faster one just lets tokens pile up in front of it.
-std::vector<std::pair<std::vector<ActorId>, std::vector<std::size_t>>> components(const Graph& g, const ThroughputOptions& options) {
-  const std::size_t n = g.actors.size();
-  std::vector<std::vector<ActorId>> next(n);
-  for (std::size_t c = 0; c < g.channels.size(); ++c) {
-    const Channel& ch = g.channels[c];
-    next[ch.source].push_back(ch.target);
-    if (c < options.capacities.size() && options.capacities[c] && !ch.selfLoop()) next[ch.target].push_back(ch.source);
-  }
+// The strongly connected component of each node of a directed graph (successor lists), numbered
+// from 0 (Tarjan's algorithm, iterative: no recursion depth limit).
+std::vector<std::size_t> strongComponents(const std::vector<std::vector<std::size_t>>& next, std::size_t& count) {
+  const std::size_t n = next.size();
   std::vector<std::size_t> index(n, SIZE_MAX), low(n, 0), component(n, SIZE_MAX);
   std::vector<char> onStack(n, 0);
-  std::vector<ActorId> stack;
-  std::vector<std::pair<ActorId, std::size_t>> calls;  // (actor, next successor to look at)
-  std::size_t counter = 0, components = 0;
-  for (ActorId root = 0; root < n; ++root) {
+  std::vector<std::size_t> stack;
+  std::vector<std::pair<std::size_t, std::size_t>> calls;  // (node, next successor to look at)
+  std::size_t counter = 0;
+  count = 0;
+  for (std::size_t root = 0; root < n; ++root) {
     if (index[root] != SIZE_MAX) continue;
     calls.push_back({root, 0});
     while (!calls.empty()) {
@@ -46,27 +39,44 @@ std::vector<std::pair<std::vector<ActorId>, std::vector<std::size_t>>> component
         onStack[v] = 1;
       }
       if (k < next[v].size()) {
-        ActorId w = next[v][k++];
+        std::size_t w = next[v][k++];
         if (index[w] == SIZE_MAX) calls.push_back({w, 0});
         else if (onStack[w]) low[v] = std::min(low[v], index[w]);
         continue;
       }
       if (low[v] == index[v]) {
-        ActorId w;
+        std::size_t w = 0;
         do {
           w = stack.back();
           stack.pop_back();
           onStack[w] = 0;
-          component[w] = components;
+          component[w] = count;
         } while (w != v);
-        ++components;
+        ++count;
       }
-      ActorId done = v;
+      std::size_t done = v;
       calls.pop_back();
       if (!calls.empty()) low[calls.back().first] = std::min(low[calls.back().first], low[done]);
     }
   }
-  std::vector<std::pair<std::vector<ActorId>, std::vector<std::size_t>>> out(components);
+  return component;
+}
+
+// The strongly connected components of the graph, each with the channels inside it. A bounded
+// channel also leads back from its target to its source (its free space flows that way). Only
+// these limit the throughput: with unbounded channels, a component downstream of a faster one just
+// lets tokens pile up in front of it.
+std::vector<std::pair<std::vector<ActorId>, std::vector<std::size_t>>> components(const Graph& g, const ThroughputOptions& options) {
+  const std::size_t n = g.actors.size();
+  std::vector<std::vector<std::size_t>> next(n);
+  for (std::size_t c = 0; c < g.channels.size(); ++c) {
+    const Channel& ch = g.channels[c];
+    next[ch.source].push_back(ch.target);
+    if (c < options.capacities.size() && options.capacities[c] && !ch.selfLoop()) next[ch.target].push_back(ch.source);
+  }
+  std::size_t count = 0;
+  const std::vector<std::size_t> component = strongComponents(next, count);
+  std::vector<std::pair<std::vector<ActorId>, std::vector<std::size_t>>> out(count);
   for (ActorId a = 0; a < n; ++a) out[component[a]].first.push_back(a);
   for (std::size_t c = 0; c < g.channels.size(); ++c) {
     if (component[g.channels[c].source] == component[g.channels[c].target]) out[component[g.channels[c].source]].second.push_back(c);
@@ -79,14 +89,14 @@ class SelfTimed {
   SelfTimed(const Graph& g, const std::vector<ActorId>& actors, const std::vector<std::size_t>& channels,
             const std::vector<std::int64_t>& q, const ThroughputOptions& options)
       : g_(g), actors_(actors), channels_(channels), q_(q), options_(options) {
-    std::vector<std::size_t> local(g.actors.size(), 0);
-    for (std::size_t i = 0; i < actors.size(); ++i) local[actors[i]] = i;
+    localIndex_.assign(g.actors.size(), 0);
+    for (std::size_t i = 0; i < actors.size(); ++i) localIndex_[actors[i]] = i;
     inputs_.resize(actors.size());
     outputs_.resize(actors.size());
     for (std::size_t i = 0; i < channels.size(); ++i) {
       const Channel& c = g.channels[channels[i]];
-      inputs_[local[c.target]].push_back(i);
-      outputs_[local[c.source]].push_back(i);
+      inputs_[localIndex_[c.target]].push_back(i);
+      outputs_[localIndex_[c.source]].push_back(i);
     }
   }
 
@@ -200,10 +210,10 @@ class SelfTimed {
           // What arrived at this instant and let the firing start: tokens (from the producer) or
           // space (freed by the consumer).
           for (std::size_t i : inputs_[a]) {
-            if (tokenRefresh_[i] == step_) dependencies_.push_back({local(g_.channels[channels_[i]].source), a, SIZE_MAX, step_});
+            if (tokenRefresh_[i] == step_) dependencies_.push_back({localIndex_[g_.channels[channels_[i]].source], a, SIZE_MAX, step_});
           }
           for (std::size_t i : outputs_[a]) {
-            if (space_[i] >= 0 && spaceRefresh_[i] == step_) dependencies_.push_back({local(g_.channels[channels_[i]].target), a, i, step_});
+            if (space_[i] >= 0 && spaceRefresh_[i] == step_) dependencies_.push_back({localIndex_[g_.channels[channels_[i]].target], a, i, step_});
           }
         }
         for (std::size_t i : inputs_[a]) tokens_[i] -= times * g_.channels[channels_[i]].consumption;
@@ -228,59 +238,20 @@ class SelfTimed {
     return true;
   }
 
-  std::size_t local(ActorId global) const {
-    return static_cast<std::size_t>(std::find(actors_.begin(), actors_.end(), global) - actors_.begin());
-  }
-
-  // The storage dependencies of step `from` on that lie on a cycle of dependencies (Tarjan over the
-  // local actors), as global channel flags.
+  // The storage dependencies of step `from` on that lie on a cycle of dependencies, as global
+  // channel flags.
   void criticalSince(std::int64_t from, ThroughputResult& out) const {
     const std::size_t n = actors_.size();
     std::vector<std::vector<std::size_t>> next(n);
     for (const Dependency& d : dependencies_) {
       if (d.step >= from) next[d.from].push_back(d.to);
     }
-    std::vector<std::size_t> index(n, SIZE_MAX), low(n, 0), component(n, SIZE_MAX), size;
-    std::vector<char> onStack(n, 0);
-    std::vector<std::size_t> stack;
-    std::vector<std::pair<std::size_t, std::size_t>> calls;
-    std::size_t counter = 0;
-    for (std::size_t root = 0; root < n; ++root) {
-      if (index[root] != SIZE_MAX) continue;
-      calls.push_back({root, 0});
-      while (!calls.empty()) {
-        auto& [v, k] = calls.back();
-        if (k == 0 && index[v] == SIZE_MAX) {
-          index[v] = low[v] = counter++;
-          stack.push_back(v);
-          onStack[v] = 1;
-        }
-        if (k < next[v].size()) {
-          std::size_t w = next[v][k++];
-          if (index[w] == SIZE_MAX) calls.push_back({w, 0});
-          else if (onStack[w]) low[v] = std::min(low[v], index[w]);
-          continue;
-        }
-        if (low[v] == index[v]) {
-          std::size_t w = 0, members = 0;
-          do {
-            w = stack.back();
-            stack.pop_back();
-            onStack[w] = 0;
-            component[w] = size.size();
-            ++members;
-          } while (w != v);
-          size.push_back(members);
-        }
-        std::size_t done = v;
-        calls.pop_back();
-        if (!calls.empty()) low[calls.back().first] = std::min(low[calls.back().first], low[done]);
-      }
-    }
+    std::size_t count = 0;
+    const std::vector<std::size_t> component = strongComponents(next, count);
     out.spaceCritical.assign(g_.channels.size(), 0);
     for (const Dependency& d : dependencies_) {
+      // On a cycle: both ends in one component (a self-dependency is a cycle of its own).
       if (d.step < from || d.channel == SIZE_MAX || component[d.from] != component[d.to]) continue;
-      if (d.from != d.to && size[component[d.from]] < 2) continue;
       // Space that arrived as the firing started but had not held it back is no dependency.
       if (lastBlocked_[d.channel] < from) continue;
       out.spaceCritical[channels_[d.channel]] = 1;
@@ -315,6 +286,7 @@ class SelfTimed {
   const std::vector<std::size_t>& channels_;
   const std::vector<std::int64_t>& q_;
   const ThroughputOptions& options_;
+  std::vector<std::size_t> localIndex_;                     // per actor of the graph: its index here
   std::vector<std::vector<std::size_t>> inputs_, outputs_;  // per local actor: local channel indices
   std::vector<std::int64_t> tokens_, space_;                // per local channel; space -1: unbounded
   std::vector<std::vector<std::int64_t>> active_;           // per local actor: remaining times, sorted

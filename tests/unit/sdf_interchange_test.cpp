@@ -69,7 +69,7 @@ TEST(SdfInterchange, NamesThatNeedEscaping) {
   EXPECT_EQ(again->actors[1].name, "<z>");
   EXPECT_EQ(again->channels[0].name, "c\"1");
   EXPECT_EQ(again->channels[0].initialTokens, 1);
-  std::string dot = toDot(g);
+  std::string dot = toGraphviz(g);
   EXPECT_NE(dot.find("digraph \"a<b>&\\\"c\\\"\""), std::string::npos) << dot;
   EXPECT_NE(dot.find("a0 -> a1 [label=\"c\\\"1: 2 -> 3 (1 tokens)\"]"), std::string::npos) << dot;
 }

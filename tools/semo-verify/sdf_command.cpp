@@ -44,7 +44,7 @@ int runSdf(const SdfOptions& options) {
   std::optional<sdf::Graph> g = sdf::readSdf3(sources, file, diags);
   for (const Diagnostic& d : diags.diagnostics()) std::cerr << diags.format(d);
   if (!g) return kBadInput;
-  for (const auto& [path, text] : {std::pair{options.dotOut, sdf::toDot(*g)}, std::pair{options.sdf3Out, sdf::writeSdf3(*g)}}) {
+  for (const auto& [path, text] : {std::pair{options.dotOut, sdf::toGraphviz(*g)}, std::pair{options.sdf3Out, sdf::writeSdf3(*g)}}) {
     if (path && !writeAtomically(*path, text)) {
       std::cerr << "semo-verify: error: cannot write '" << *path << "'\n";
       return kBadInput;

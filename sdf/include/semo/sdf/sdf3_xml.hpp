@@ -19,6 +19,6 @@ std::string writeSdf3(const Graph& g);
 
 // The graph for Graphviz: actors as boxes (name, execution time), channels as edges labelled with
 // their rates and initial tokens.
-std::string toDot(const Graph& g);
+std::string toGraphviz(const Graph& g);
 
 }  // namespace semo::sdf
