@@ -56,6 +56,11 @@ struct ExportOptions {
 
 struct SdfOptions {
   std::string sdf3;  // a graph in SDF3's XML format
+  // or a mission (with its strategy), or semo's own task-graph JSON: per-robot task graphs
+  std::optional<std::string> mission, strategy, robotsDir, graphJson;
+  std::optional<std::string> robot;   // only this robot's graph
+  std::optional<std::string> outDir;  // write ROBOT.json and ROBOT.dot per robot there
+  unsigned proofTimeoutMs = 10'000;
   bool json = false;
   bool buffers = false;  // also the throughput-buffer Pareto front
   std::uint64_t maxDistributions = 200'000;
@@ -67,6 +72,8 @@ bool writeAtomically(const std::string& path, const std::string& text);
 
 int runParse(const ParseOptions& options);
 int runSdf(const SdfOptions& options);
+// `sdf MISSION --strategy S` and `sdf --graph G.json` (taskgraph_command.cpp).
+int runTaskGraphs(const SdfOptions& options);
 int runCheck(const CheckOptions& options);
 // `check --engine smt` on a model already built (check_smt.cpp).
 int runCheckSmt(const CheckOptions& options, const ir::Model& model);

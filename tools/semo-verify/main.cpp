@@ -73,8 +73,16 @@ int main(int argc, char** argv) {
   exportCmd->add_option("--output,-o", exportOptions.output, "Write to this file (default: standard output)");
 
   semo::cli::SdfOptions sdfOptions;
-  CLI::App* sdfCmd = app.add_subcommand("sdf", "Analyse a dataflow graph: consistency, repetition vector, deadlock freedom, a schedule");
-  sdfCmd->add_option("--sdf3", sdfOptions.sdf3, "A graph in SDF3's XML format")->required();
+  CLI::App* sdfCmd = app.add_subcommand("sdf", "Build each robot's dataflow task graph from a mission, or read one graph; analyse every "
+                                                "scenario: consistency, deadlock freedom, schedule, throughput, proven buffer bounds");
+  sdfCmd->add_option("mission", sdfOptions.mission, "Mission file (.semo), with --strategy: one task graph per robot");
+  sdfCmd->add_option("--strategy,-s", sdfOptions.strategy, "Strategy file (.xml), for a mission");
+  sdfCmd->add_option("--robots,-r", sdfOptions.robotsDir, "Folder of URDF files");
+  sdfCmd->add_option("--robot", sdfOptions.robot, "Only this robot's task graph");
+  sdfCmd->add_option("--out,-o", sdfOptions.outDir, "Write each robot's task graph as ROBOT.json and ROBOT.dot into this folder");
+  sdfCmd->add_option("--graph", sdfOptions.graphJson, "A task graph in semo's JSON form (specs/taskgraph.md)");
+  sdfCmd->add_option("--proof-timeout", sdfOptions.proofTimeoutMs, "Give up one Z3 buffer-bound query after this many milliseconds (default 10000)");
+  sdfCmd->add_option("--sdf3", sdfOptions.sdf3, "A graph in SDF3's XML format");
   sdfCmd->add_flag("--json", sdfOptions.json, "Print the analysis as JSON");
   sdfCmd->add_flag("--buffers", sdfOptions.buffers, "Also explore buffer capacities: the throughput-buffer Pareto front");
   sdfCmd->add_option("--dot", sdfOptions.dotOut, "Write the graph for Graphviz to this file");
@@ -98,6 +106,17 @@ int main(int argc, char** argv) {
   if (*lintCmd) return semo::cli::runLint(lint);
   if (*checkCmd) return semo::cli::runCheck(check);
   if (*exportCmd) return semo::cli::runExport(exportOptions);
-  if (*sdfCmd) return semo::cli::runSdf(sdfOptions);
+  if (*sdfCmd) {
+    const int inputs = (sdfOptions.mission ? 1 : 0) + (sdfOptions.graphJson ? 1 : 0) + (sdfOptions.sdf3.empty() ? 0 : 1);
+    if (inputs != 1) {
+      std::cerr << "semo-verify sdf: give exactly one of: a mission (with --strategy), --graph G.json, --sdf3 G.xml\n";
+      return semo::cli::kBadInput;
+    }
+    if (sdfOptions.mission && !sdfOptions.strategy) {
+      std::cerr << "semo-verify sdf: a mission needs its strategy (--strategy FILE)\n";
+      return semo::cli::kBadInput;
+    }
+    return sdfOptions.sdf3.empty() ? semo::cli::runTaskGraphs(sdfOptions) : semo::cli::runSdf(sdfOptions);
+  }
   return semo::cli::kBadInput;
 }

@@ -1,0 +1,40 @@
+#pragma once
+// Every analysis of a task graph, scenario by scenario: consistency and repetition vector,
+// deadlock freedom with a static schedule, the period with unbounded channels, the throughput-
+// buffer front and the chosen, proven buffer bounds (bounds.hpp). The capacities the robot's code
+// gets are, per channel, the largest maximal-throughput bound over the scenarios that use it:
+// enlarging a channel never deadlocks an SDF graph nor lowers its throughput, so every scenario's
+// proofs still hold with them.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "semo/sdf/bounds.hpp"
+#include "semo/sdf/consistency.hpp"
+#include "semo/sdf/task_graph.hpp"
+#include "semo/sdf/throughput.hpp"
+
+namespace semo::sdf {
+
+struct ScenarioAnalysis {
+  std::string scenario;
+  Graph graph;  // scenarioGraph(): actor/channel indices below refer to it
+  RepetitionVector repetition;
+  Iteration iteration;
+  ThroughputResult unbounded;
+  ScenarioBounds bounds;
+  // Sound: consistent, deadlock free, period known and both bounds proven (safety and minimality).
+  [[nodiscard]] bool sound() const;
+  // Decided: nothing came out "unknown" (a limit or a solver timeout); !sound() && decided() is a
+  // real defect of the graph.
+  [[nodiscard]] bool decided() const;
+};
+
+struct TaskGraphAnalysis {
+  std::vector<ScenarioAnalysis> scenarios;
+  std::vector<std::int64_t> capacities;  // per TaskGraph channel (0: in no scenario)
+};
+
+TaskGraphAnalysis analyseTaskGraph(const TaskGraph& tg, const BoundsOptions& options = {});
+
+}  // namespace semo::sdf

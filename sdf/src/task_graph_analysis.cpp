@@ -1,0 +1,52 @@
+// Per-scenario analysis of a task graph (task_graph_analysis.hpp).
+#include "semo/sdf/task_graph_analysis.hpp"
+
+#include <algorithm>
+
+namespace semo::sdf {
+
+namespace {
+
+bool boundsProven(const ChosenBounds& b) { return b.safety == ProofStatus::Proven && b.minimality == ProofStatus::Proven; }
+bool boundsUnknown(const ChosenBounds& b) { return b.safety == ProofStatus::Unknown || b.minimality == ProofStatus::Unknown; }
+
+}  // namespace
+
+bool ScenarioAnalysis::sound() const {
+  return repetition.consistent() && iteration.deadlockFree && unbounded.error.empty() && bounds.haveBounds &&
+         boundsProven(bounds.deadlockFree) && boundsProven(bounds.maxThroughput);
+}
+
+bool ScenarioAnalysis::decided() const {
+  if (!repetition.consistent()) return repetition.conflictChannel.has_value();
+  if (!iteration.error.empty()) return false;
+  if (!iteration.deadlockFree) return true;
+  if (!unbounded.error.empty() || !bounds.haveBounds) return false;
+  return !boundsUnknown(bounds.deadlockFree) && !boundsUnknown(bounds.maxThroughput);
+}
+
+TaskGraphAnalysis analyseTaskGraph(const TaskGraph& tg, const BoundsOptions& options) {
+  TaskGraphAnalysis out;
+  out.capacities.assign(tg.channels.size(), 0);
+  for (const Scenario& s : tg.scenarios) {
+    ScenarioAnalysis a;
+    a.scenario = s.name;
+    a.graph = scenarioGraph(tg, s);
+    a.repetition = repetitionVector(a.graph);
+    if (a.repetition.consistent()) a.iteration = runIteration(a.graph, a.repetition.firings);
+    if (a.iteration.deadlockFree) a.unbounded = throughput(a.graph, a.repetition.firings);
+    if (a.iteration.deadlockFree && a.unbounded.error.empty()) {
+      a.bounds = chooseAndProveBounds(a.graph, a.repetition.firings, options);
+      if (a.bounds.haveBounds) {
+        for (std::size_t c = 0; c < s.channels.size(); ++c) {  // scenarioGraph keeps the scenario's channel order
+          std::int64_t& cap = out.capacities[s.channels[c].channel];
+          cap = std::max(cap, a.bounds.maxThroughput.capacities[c]);
+        }
+      }
+    }
+    out.scenarios.push_back(std::move(a));
+  }
+  return out;
+}
+
+}  // namespace semo::sdf

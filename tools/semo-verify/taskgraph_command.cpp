@@ -1,0 +1,212 @@
+// `sdf MISSION --strategy S` (a task graph per robot) and `sdf --graph G.json` (one task graph):
+// every scenario analysed, buffer bounds chosen and proven (sdf/task_graph_analysis.hpp).
+#include <filesystem>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "semo/semantics/load.hpp"
+#include "semo/sdf/task_graph_analysis.hpp"
+#include "semo/sdf/task_graph_io.hpp"
+
+namespace semo::cli {
+
+namespace {
+
+using nlohmann::json;
+
+// What every verdict below rests on.
+constexpr const char* kAssumptions =
+    "execution times are the strategy's worst cases (generated control and communication tasks: 1 ms nominal); "
+    "a task's firings run one at a time; channels are FIFO with space claimed when a firing starts and freed when "
+    "the consuming firing ends; messages between robots are outside these graphs";
+
+std::string periodText(const sdf::Period& p) { return std::to_string(p.num) + (p.den == 1 ? "" : "/" + std::to_string(p.den)); }
+
+const char* outcomeName(sdf::ChannelMinimality::Outcome o) {
+  switch (o) {
+    case sdf::ChannelMinimality::Outcome::Deadlocks: return "deadlocks";
+    case sdf::ChannelMinimality::Outcome::SlowerPeriod: return "slower";
+    case sdf::ChannelMinimality::Outcome::NotMinimal: return "not-minimal";
+    case sdf::ChannelMinimality::Outcome::Unknown: return "unknown";
+  }
+  return "unknown";
+}
+
+json boundsJson(const sdf::Graph& g, const sdf::ChosenBounds& b) {
+  json caps = json::object();
+  for (std::size_t c = 0; c < g.channels.size(); ++c) {
+    if (!g.channels[c].selfLoop()) caps[g.channels[c].name] = b.capacities[c];
+  }
+  json channels = json::array();
+  for (const sdf::ChannelMinimality& m : b.channels) {
+    json one = {{"channel", g.channels[m.channel].name}, {"oneLess", outcomeName(m.outcome)}};
+    if (m.outcome == sdf::ChannelMinimality::Outcome::SlowerPeriod) one["period"] = {{"num", m.periodWithOneLess.num}, {"den", m.periodWithOneLess.den}};
+    if (!m.note.empty()) one["note"] = m.note;
+    channels.push_back(one);
+  }
+  json schedule = json::array();
+  for (const sdf::FiringRun& run : b.schedule) schedule.push_back({{"actor", g.actors[run.actor].name}, {"times", run.times}});
+  json out = {{"total", b.total}, {"period", {{"num", b.period.num}, {"den", b.period.den}}}, {"capacities", caps},
+              {"schedule", schedule}, {"safety", sdf::proofStatusName(b.safety)}, {"minimality", sdf::proofStatusName(b.minimality)},
+              {"channels", channels}};
+  if (!b.safetyNote.empty()) out["safetyNote"] = b.safetyNote;
+  return out;
+}
+
+json scenarioJson(const sdf::ScenarioAnalysis& a) {
+  const sdf::Graph& g = a.graph;
+  json out = {{"scenario", a.scenario}, {"actors", g.actors.size()}, {"consistent", a.repetition.consistent()}, {"sound", a.sound()}};
+  if (!a.repetition.consistent()) {
+    out["error"] = a.repetition.error;
+    if (a.repetition.conflictChannel) out["conflictChannel"] = g.channels[*a.repetition.conflictChannel].name;
+    return out;
+  }
+  json rep = json::object();
+  for (std::size_t i = 0; i < g.actors.size(); ++i) rep[g.actors[i].name] = a.repetition.firings[i];
+  out["repetitionVector"] = rep;
+  out["deadlockFree"] = a.iteration.deadlockFree;
+  json schedule = json::array();
+  for (const sdf::FiringRun& run : a.iteration.schedule) schedule.push_back({{"actor", g.actors[run.actor].name}, {"times", run.times}});
+  out["schedule"] = schedule;
+  if (!a.iteration.deadlockFree) return out;
+  if (!a.unbounded.error.empty()) {
+    out["periodError"] = a.unbounded.error;
+    return out;
+  }
+  out["periodMicros"] = {{"num", a.unbounded.period.num}, {"den", a.unbounded.period.den}};
+  if (!a.bounds.haveBounds) {
+    out["boundsError"] = a.bounds.error;
+    return out;
+  }
+  out["front"] = {{"points", a.bounds.front.points.size()}, {"distributions", a.bounds.front.distributions}};
+  out["deadlockFreeBounds"] = boundsJson(g, a.bounds.deadlockFree);
+  out["maxThroughputBounds"] = boundsJson(g, a.bounds.maxThroughput);
+  return out;
+}
+
+std::string boundsLine(const char* what, const sdf::ChosenBounds& b) {
+  std::size_t deadlocks = 0, slower = 0;
+  for (const sdf::ChannelMinimality& m : b.channels) {
+    deadlocks += m.outcome == sdf::ChannelMinimality::Outcome::Deadlocks;
+    slower += m.outcome == sdf::ChannelMinimality::Outcome::SlowerPeriod;
+  }
+  std::string line = std::string("    ") + what + ": total " + std::to_string(b.total) + ", period " + periodText(b.period) +
+                     " us; no overflow/underflow " + sdf::proofStatusName(b.safety) + " (Z3, any number of iterations)";
+  line += "; minimal " + std::string(sdf::proofStatusName(b.minimality)) + " (one token less: " + std::to_string(deadlocks) +
+          " channels deadlock (Z3)";
+  if (slower != 0) line += ", " + std::to_string(slower) + " lose throughput (exact period)";
+  return line + ")\n";
+}
+
+void printScenario(const sdf::ScenarioAnalysis& a) {
+  const sdf::Graph& g = a.graph;
+  std::cout << "  scenario " << a.scenario << " (" << g.actors.size() << " tasks)\n";
+  if (!a.repetition.consistent()) {
+    std::cout << "    VIOLATED  consistency  (" << a.repetition.error << ")\n";
+    return;
+  }
+  std::cout << "    proven  consistency  (repetition vector:";
+  for (std::size_t i = 0; i < g.actors.size(); ++i) std::cout << " " << g.actors[i].name << " " << a.repetition.firings[i];
+  std::cout << ")\n";
+  if (!a.iteration.error.empty()) {
+    std::cout << "    unknown  deadlock_freedom  (" << a.iteration.error << ")\n";
+    return;
+  }
+  if (!a.iteration.deadlockFree) {
+    std::cout << "    VIOLATED  deadlock_freedom  (nothing can fire after " << sdf::scheduleText(g, a.iteration.schedule) << ")\n";
+    return;
+  }
+  std::cout << "    proven  deadlock_freedom  (schedule: " << sdf::scheduleText(g, a.iteration.schedule) << ")\n";
+  if (!a.unbounded.error.empty()) {
+    std::cout << "    period: not computed (" << a.unbounded.error << ")\n";
+    return;
+  }
+  std::cout << "    period: " << periodText(a.unbounded.period) << " us per iteration with unbounded channels\n";
+  if (!a.bounds.haveBounds) {
+    std::cout << "    unknown  buffer_bounds  (" << a.bounds.error << ")\n";
+    return;
+  }
+  std::cout << boundsLine("deadlock-free bounds", a.bounds.deadlockFree) << boundsLine("max-throughput bounds", a.bounds.maxThroughput);
+}
+
+}  // namespace
+
+int runTaskGraphs(const SdfOptions& options) {
+  SourceManager sources;
+  DiagnosticEngine diags(sources);
+  std::vector<sdf::TaskGraph> graphs;
+  if (options.mission) {
+    std::optional<model::MissionModel> mission = loadMission({*options.mission, *options.strategy, options.robotsDir}, sources, diags);
+    if (mission) {
+      if (auto generated = sdf::generateTaskGraphs(*mission, diags)) graphs = std::move(*generated);
+    }
+  } else {
+    std::string error;
+    const FileId file = sources.load(*options.graphJson, error);
+    if (!error.empty()) {
+      std::cerr << "semo-verify: error: " << error << "\n";
+      return kBadInput;
+    }
+    if (auto g = sdf::readTaskGraphJson(sources, file, diags)) graphs.push_back(std::move(*g));
+  }
+  diags.sortByPosition();
+  diags.print(std::cerr);
+  if (diags.hasErrors()) return kBadInput;
+  if (options.robot) {
+    std::erase_if(graphs, [&](const sdf::TaskGraph& g) { return g.robot != *options.robot; });
+    if (graphs.empty()) {
+      std::cerr << "semo-verify: error: no robot named '" << *options.robot << "'\n";
+      return kBadInput;
+    }
+  }
+  if (options.outDir) {
+    std::error_code ec;
+    std::filesystem::create_directories(*options.outDir, ec);
+    for (const sdf::TaskGraph& g : graphs) {
+      const std::string base = (std::filesystem::path(*options.outDir) / g.robot).string();
+      if (ec || !writeAtomically(base + ".json", sdf::taskGraphToJson(g)) || !writeAtomically(base + ".dot", sdf::taskGraphToGraphviz(g))) {
+        std::cerr << "semo-verify: error: cannot write the task graphs into '" << *options.outDir << "'\n";
+        return kBadInput;
+      }
+    }
+  }
+
+  sdf::BoundsOptions bo;
+  bo.maxDistributions = options.maxDistributions;
+  bo.timeoutMs = options.proofTimeoutMs;
+  bool allSound = true, allDecided = true;
+  json robots = json::array();
+  for (const sdf::TaskGraph& g : graphs) {
+    const sdf::TaskGraphAnalysis analysis = sdf::analyseTaskGraph(g, bo);
+    for (const sdf::ScenarioAnalysis& a : analysis.scenarios) {
+      allSound = allSound && a.sound();
+      allDecided = allDecided && a.decided();
+    }
+    if (options.json) {
+      json scenarios = json::array();
+      for (const sdf::ScenarioAnalysis& a : analysis.scenarios) scenarios.push_back(scenarioJson(a));
+      json caps = json::object();
+      for (std::size_t c = 0; c < g.channels.size(); ++c) {
+        if (analysis.capacities[c] > 0) caps[g.channels[c].name] = analysis.capacities[c];
+      }
+      robots.push_back({{"robot", g.robot}, {"robotType", g.robotType}, {"team", g.team}, {"tasks", g.tasks.size()},
+                        {"channels", g.channels.size()}, {"remotePorts", g.remotePorts.size()}, {"scenarios", scenarios},
+                        {"capacities", caps}});
+      continue;
+    }
+    std::cout << "robot " << g.robot << " (" << g.robotType << ", " << g.team << "): " << g.tasks.size() << " tasks, " << g.channels.size()
+              << " channels, " << g.remotePorts.size() << " remote ports, " << g.scenarios.size() << " scenarios\n";
+    for (const sdf::ScenarioAnalysis& a : analysis.scenarios) printScenario(a);
+  }
+  // Sound everywhere: 0; a real defect (inconsistent, deadlocking, a bound refuted): 1; else 3.
+  const int code = allSound ? kOk : allDecided ? kViolated : kLimit;
+  if (options.json) {
+    std::cout << json{{"robots", robots}, {"assumptions", kAssumptions}, {"exitCode", code}}.dump(2) << "\n";
+  } else {
+    std::cout << "assumptions: " << kAssumptions << "\n";
+  }
+  return code;
+}
+
+}  // namespace semo::cli
