@@ -97,25 +97,33 @@ ProofStatus proveIterationImpossible(const Graph& g, const std::vector<std::int6
   }
   const std::size_t actors = g.actors.size();
   const std::int64_t steps = std::accumulate(q.begin(), q.end(), std::int64_t{0});
+  std::vector<std::vector<const Channel*>> inputs(actors);
+  for (const Channel& c : full.channels) inputs[c.target].push_back(&c);
   z3::context ctx;
   z3::solver s = solverWith(ctx, timeoutMs);
-  // count[a] after k steps; the tokens of a channel are then its initial tokens plus what its
-  // source produced minus what its target consumed, so no per-channel state is needed.
+  // One Boolean per step and actor, exactly one true per step. count[a] after k steps is a sum of
+  // them; a channel's tokens are its initial tokens plus what its source produced minus what its
+  // target consumed, so no per-channel state is needed.
   std::vector<z3::expr> count;
   for (std::size_t a = 0; a < actors; ++a) count.push_back(ctx.int_val(0));
-  const z3::expr zero = ctx.int_val(0), one = ctx.int_val(1);
   for (std::int64_t k = 0; k < steps; ++k) {
-    z3::expr fired = ctx.int_const(("fire_" + std::to_string(k)).c_str());
-    s.add(fired >= 0 && fired < ctx.int_val(static_cast<unsigned>(actors)));
-    for (const Channel& c : full.channels) {
-      const z3::expr tokens = ctx.int_val(static_cast<int64_t>(c.initialTokens)) +
-                              count[c.source] * ctx.int_val(static_cast<int64_t>(c.production)) -
-                              count[c.target] * ctx.int_val(static_cast<int64_t>(c.consumption));
-      s.add(z3::implies(fired == ctx.int_val(c.target), tokens >= ctx.int_val(static_cast<int64_t>(c.consumption))));
+    z3::expr_vector fires(ctx);
+    for (std::size_t a = 0; a < actors; ++a) fires.push_back(ctx.bool_const(("fire_" + std::to_string(k) + "_" + std::to_string(a)).c_str()));
+    s.add(z3::mk_or(fires));
+    s.add(z3::atmost(fires, 1));
+    for (std::size_t a = 0; a < actors; ++a) {
+      for (const Channel* c : inputs[a]) {
+        const z3::expr tokens = ctx.int_val(static_cast<int64_t>(c->initialTokens)) +
+                                count[c->source] * ctx.int_val(static_cast<int64_t>(c->production)) -
+                                count[c->target] * ctx.int_val(static_cast<int64_t>(c->consumption));
+        s.add(z3::implies(fires[static_cast<unsigned>(a)], tokens >= ctx.int_val(static_cast<int64_t>(c->consumption))));
+      }
     }
     for (std::size_t a = 0; a < actors; ++a) {
-      count[a] = count[a] + z3::ite(fired == ctx.int_val(static_cast<unsigned>(a)), one, zero);
-      s.add(count[a] <= ctx.int_val(static_cast<int64_t>(q[a])));  // redundant, prunes early
+      z3::expr next = ctx.int_const(("count_" + std::to_string(a) + "_" + std::to_string(k + 1)).c_str());
+      s.add(next == count[a] + z3::ite(fires[static_cast<unsigned>(a)], ctx.int_val(1), ctx.int_val(0)));
+      s.add(next <= ctx.int_val(static_cast<int64_t>(q[a])));  // redundant, prunes early
+      count[a] = next;
     }
   }
   for (std::size_t a = 0; a < actors; ++a) s.add(count[a] == ctx.int_val(static_cast<int64_t>(q[a])));
