@@ -59,9 +59,12 @@ case "$mode" in
     seconds="${FUZZ_SECONDS:-300}"
     # Seed corpora: the project's own missions and strategies.
     mkdir -p build-fuzz/corpus-fuzz_mission_parser build-fuzz/corpus-fuzz_strategy_reader build-fuzz/corpus-fuzz_ir_reader \
-      build-fuzz/corpus-fuzz_sdf3_reader
+      build-fuzz/corpus-fuzz_sdf3_reader build-fuzz/corpus-fuzz_taskgraph_reader
     for f in specs/benchmarks/sdf3/*.xml tests/diagnostics/sdf3/*.xml; do
       cp "$f" "build-fuzz/corpus-fuzz_sdf3_reader/$(echo "$f" | tr / _)"
+    done
+    for f in tests/e2e/sdf/*.json tests/diagnostics/taskgraph/*.json; do
+      cp "$f" "build-fuzz/corpus-fuzz_taskgraph_reader/$(echo "$f" | tr / _)"
     done
     for f in tests/e2e/ir/*.ir; do cp "$f" "build-fuzz/corpus-fuzz_ir_reader/$(echo "$f" | tr / _)"; done
     for f in specs/*.semo specs/examples/*/*.semo tests/diagnostics/common/*.semo; do
@@ -70,7 +73,7 @@ case "$mode" in
     for f in specs/examples/*/strategy.xml tests/diagnostics/common/*.xml; do
       cp "$f" "build-fuzz/corpus-fuzz_strategy_reader/$(echo "$f" | tr / _)"
     done
-    for target in fuzz_mission_parser fuzz_strategy_reader fuzz_ir_reader fuzz_sdf3_reader; do
+    for target in fuzz_mission_parser fuzz_strategy_reader fuzz_ir_reader fuzz_sdf3_reader fuzz_taskgraph_reader; do
       corpus="build-fuzz/corpus-$target"
       echo "== fuzzing $target for ${seconds}s"
       ./build-fuzz/tests/fuzz/"$target" -max_total_time="$seconds" -max_len=8192 -timeout=10 \

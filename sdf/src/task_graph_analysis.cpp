@@ -10,6 +10,13 @@ namespace {
 bool boundsProven(const ChosenBounds& b) { return b.safety == ProofStatus::Proven && b.minimality == ProofStatus::Proven; }
 bool boundsUnknown(const ChosenBounds& b) { return b.safety == ProofStatus::Unknown || b.minimality == ProofStatus::Unknown; }
 
+void analyseScenario(ScenarioAnalysis& a, const BoundsOptions& options) {
+  a.repetition = repetitionVector(a.graph);
+  if (a.repetition.consistent()) a.iteration = runIteration(a.graph, a.repetition.firings);
+  if (a.iteration.deadlockFree) a.unbounded = throughput(a.graph, a.repetition.firings);
+  if (a.iteration.deadlockFree && a.unbounded.error.empty()) a.bounds = chooseAndProveBounds(a.graph, a.repetition.firings, options);
+}
+
 }  // namespace
 
 bool ScenarioAnalysis::sound() const {
@@ -25,23 +32,42 @@ bool ScenarioAnalysis::decided() const {
   return !boundsUnknown(bounds.deadlockFree) && !boundsUnknown(bounds.maxThroughput);
 }
 
-TaskGraphAnalysis analyseTaskGraph(const TaskGraph& tg, const BoundsOptions& options) {
+std::string ScenarioCache::key(const Graph& g) {
+  std::string k;
+  for (const Actor& a : g.actors) k += a.name + ' ' + std::to_string(a.executionTime) + ';';
+  for (const Channel& c : g.channels) {
+    k += c.name + ' ' + std::to_string(c.source) + ' ' + std::to_string(c.target) + ' ' + std::to_string(c.production) + ' ' +
+         std::to_string(c.consumption) + ' ' + std::to_string(c.initialTokens) + ';';
+  }
+  return k;
+}
+
+const ScenarioAnalysis* ScenarioCache::find(const Graph& g) const {
+  auto it = entries_.find(key(g));
+  if (it == entries_.end()) return nullptr;
+  ++hits_;
+  return &it->second;
+}
+
+void ScenarioCache::store(const Graph& g, const ScenarioAnalysis& a) { entries_.emplace(key(g), a); }
+
+TaskGraphAnalysis analyseTaskGraph(const TaskGraph& tg, const BoundsOptions& options, ScenarioCache* cache) {
   TaskGraphAnalysis out;
   out.capacities.assign(tg.channels.size(), 0);
   for (const Scenario& s : tg.scenarios) {
     ScenarioAnalysis a;
-    a.scenario = s.name;
     a.graph = scenarioGraph(tg, s);
-    a.repetition = repetitionVector(a.graph);
-    if (a.repetition.consistent()) a.iteration = runIteration(a.graph, a.repetition.firings);
-    if (a.iteration.deadlockFree) a.unbounded = throughput(a.graph, a.repetition.firings);
-    if (a.iteration.deadlockFree && a.unbounded.error.empty()) {
-      a.bounds = chooseAndProveBounds(a.graph, a.repetition.firings, options);
-      if (a.bounds.haveBounds) {
-        for (std::size_t c = 0; c < s.channels.size(); ++c) {  // scenarioGraph keeps the scenario's channel order
-          std::int64_t& cap = out.capacities[s.channels[c].channel];
-          cap = std::max(cap, a.bounds.maxThroughput.capacities[c]);
-        }
+    if (const ScenarioAnalysis* known = cache != nullptr ? cache->find(a.graph) : nullptr) {
+      a = *known;
+    } else {
+      analyseScenario(a, options);
+      if (cache != nullptr) cache->store(a.graph, a);
+    }
+    a.scenario = s.name;
+    if (a.bounds.haveBounds) {
+      for (std::size_t c = 0; c < s.channels.size(); ++c) {  // scenarioGraph keeps the scenario's channel order
+        std::int64_t& cap = out.capacities[s.channels[c].channel];
+        cap = std::max(cap, a.bounds.maxThroughput.capacities[c]);
       }
     }
     out.scenarios.push_back(std::move(a));

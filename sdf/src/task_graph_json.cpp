@@ -91,6 +91,19 @@ class Reader {
     return member(o, p, key, json::value_t::array, "an array");
   }
 
+  // An optional array of strings.
+  std::vector<std::string> strings(const json& o, const std::string& p, const char* key) {
+    std::vector<std::string> out;
+    auto it = o.find(key);
+    if (it == o.end()) return out;
+    if (!it->is_array()) fail(p + "/" + key, std::string("\"") + key + "\" must be an array of strings");
+    for (std::size_t i = 0; i < it->size(); ++i) {
+      if (!(*it)[i].is_string()) fail(p + "/" + key + "/" + std::to_string(i), std::string("\"") + key + "\" must be an array of strings");
+      out.push_back((*it)[i].get<std::string>());
+    }
+    return out;
+  }
+
   std::uint32_t taskNamed(const std::string& name, const std::string& pointer) {
     auto it = taskIndex_.find(name);
     if (it == taskIndex_.end()) fail(pointer, "no task named '" + name + "'");
@@ -107,7 +120,7 @@ class Reader {
     fail(pointer, "task '" + tg_.tasks[task].name + "' has no port '" + port + "'");
   }
 
-  // "task.port" split at the last dot (task names may not contain dots; port names may not either).
+  // "task.port" split at the first dot: task names have none, the control task's port names do ("planner.goal").
   std::pair<std::uint32_t, std::string> endpoint(const std::string& ref, const std::string& pointer) {
     const auto dot = ref.find('.');
     if (dot == std::string::npos) fail(pointer, "expected 'task.port', got '" + ref + "'");
@@ -149,6 +162,7 @@ class Reader {
     }
     if (!known) fail(p + "/kind", "unknown task kind '" + kind + "'");
     t.execMicros = integer(o, p, "execMicros", 0, std::int64_t{1} << 40);
+    t.origins = strings(o, p, "origins");
     t.at = at(p);
     const json& ports = array(o, p, "ports");
     std::set<std::string> names;
@@ -200,13 +214,7 @@ class Reader {
     r.kind = kind == "multicast" ? RemotePort::Kind::Multicast : RemotePort::Kind::PointToPoint;
     r.id = text(o, p, "id");
     r.buffer = integer(o, p, "buffer", 1, kMaxRate);
-    if (auto it = o.find("peers"); it != o.end()) {
-      if (!it->is_array()) fail(p + "/peers", "\"peers\" must be an array of robot names");
-      for (const json& peer : *it) {
-        if (!peer.is_string()) fail(p + "/peers", "\"peers\" must be an array of robot names");
-        r.peers.push_back(peer.get<std::string>());
-      }
-    }
+    r.peers = strings(o, p, "peers");
     tg_.remotePorts.push_back(std::move(r));
   }
 
@@ -214,11 +222,7 @@ class Reader {
     Scenario s;
     s.name = text(o, p, "name");
     s.mode = text(o, p, "mode");
-    if (auto it = o.find("services"); it != o.end() && it->is_array()) {
-      for (const json& sv : *it) {
-        if (sv.is_string()) s.services.push_back(sv.get<std::string>());
-      }
-    }
+    s.services = strings(o, p, "services");
     const json& tasks = array(o, p, "tasks");
     std::set<std::uint32_t> active;
     for (std::size_t i = 0; i < tasks.size(); ++i) {

@@ -19,6 +19,7 @@
 
 #include "semo/frontend/robot_catalog.hpp"
 #include "semo/sdf/sdf3_xml.hpp"
+#include "semo/sdf/task_graph_io.hpp"
 #include "semo/semantics/load.hpp"
 
 namespace fs = std::filesystem;
@@ -69,7 +70,7 @@ const char* name(semo::Severity s) {
 
 std::vector<fs::path> cases() {
   std::vector<fs::path> out;
-  for (const char* folder : {"mission", "strategy", "urdf", "sdf3"}) {
+  for (const char* folder : {"mission", "strategy", "urdf", "sdf3", "taskgraph"}) {
     fs::path dir = fs::path(SEMO_DIAGNOSTICS_DIR) / folder;
     if (!fs::exists(dir)) continue;
     for (const auto& entry : fs::directory_iterator(dir)) out.push_back(entry.path());
@@ -101,6 +102,11 @@ TEST_P(DiagnosticCase, ReportsExactlyTheExpectedDiagnostics) {
     semo::FileId id = sources.load(file.string(), error);
     ASSERT_TRUE(error.empty()) << error;
     EXPECT_FALSE(semo::sdf::readSdf3(sources, id, diags).has_value()) << "a malformed graph must not be returned";
+  } else if (kind == "taskgraph") {
+    std::string error;
+    semo::FileId id = sources.load(file.string(), error);
+    ASSERT_TRUE(error.empty()) << error;
+    EXPECT_FALSE(semo::sdf::readTaskGraphJson(sources, id, diags).has_value()) << "a malformed task graph must not be returned";
   } else {
     semo::loadRobotType(sources, file.string(), {}, diags);
   }

@@ -114,7 +114,10 @@ void printScenario(const sdf::ScenarioAnalysis& a) {
     return;
   }
   if (!a.iteration.deadlockFree) {
-    std::cout << "    VIOLATED  deadlock_freedom  (nothing can fire after " << sdf::scheduleText(g, a.iteration.schedule) << ")\n";
+    std::cout << "    VIOLATED  deadlock_freedom  ("
+              << (a.iteration.schedule.empty() ? "no task can fire from the initial tokens"
+                                               : "no task can fire after " + sdf::scheduleText(g, a.iteration.schedule) + ", before the iteration ends")
+              << ")\n";
     return;
   }
   std::cout << "    proven  deadlock_freedom  (schedule: " << sdf::scheduleText(g, a.iteration.schedule) << ")\n";
@@ -177,8 +180,9 @@ int runTaskGraphs(const SdfOptions& options) {
   bo.timeoutMs = options.proofTimeoutMs;
   bool allSound = true, allDecided = true;
   json robots = json::array();
+  sdf::ScenarioCache cache;
   for (const sdf::TaskGraph& g : graphs) {
-    const sdf::TaskGraphAnalysis analysis = sdf::analyseTaskGraph(g, bo);
+    const sdf::TaskGraphAnalysis analysis = sdf::analyseTaskGraph(g, bo, &cache);
     for (const sdf::ScenarioAnalysis& a : analysis.scenarios) {
       allSound = allSound && a.sound();
       allDecided = allDecided && a.decided();

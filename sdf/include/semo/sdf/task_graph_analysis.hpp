@@ -6,6 +6,7 @@
 // enlarging a channel never deadlocks an SDF graph nor lowers its throughput, so every scenario's
 // proofs still hold with them.
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,20 @@ struct TaskGraphAnalysis {
   std::vector<std::int64_t> capacities;  // per TaskGraph channel (0: in no scenario)
 };
 
-TaskGraphAnalysis analyseTaskGraph(const TaskGraph& tg, const BoundsOptions& options = {});
+// Robots of one type in the same role get the same scenario graphs: a cache shared across calls
+// analyses each distinct graph (actors, execution times, channels, rates, tokens) once.
+class ScenarioCache {
+ public:
+  const ScenarioAnalysis* find(const Graph& g) const;
+  void store(const Graph& g, const ScenarioAnalysis& a);
+  [[nodiscard]] std::size_t hits() const { return hits_; }
+
+ private:
+  static std::string key(const Graph& g);
+  std::map<std::string, ScenarioAnalysis> entries_;
+  mutable std::size_t hits_ = 0;
+};
+
+TaskGraphAnalysis analyseTaskGraph(const TaskGraph& tg, const BoundsOptions& options = {}, ScenarioCache* cache = nullptr);
 
 }  // namespace semo::sdf
