@@ -1,7 +1,8 @@
 #pragma once
 // Where each value of a JSON text starts, by JSON pointer ("/tasks/3/name"), so that errors found
 // after nlohmann::json has parsed (and validated) the text can point at the offending value.
-// The scan trusts the text to be valid JSON: it only runs after a successful parse.
+// The scan expects the text to be valid JSON (it runs after a successful parse) but stays within
+// bounds whatever the text holds.
 #include <cstddef>
 #include <string>
 #include <string_view>
@@ -57,7 +58,7 @@ class JsonPositions {
         continue;
       }
       if (c == '}' || c == ']') {
-        stack.pop_back();
+        if (!stack.empty()) stack.pop_back();
         continue;
       }
       if (c == '"') {
@@ -68,7 +69,7 @@ class JsonPositions {
           else s += t[j];
           ++j;
         }
-        if (expectKey) {
+        if (expectKey && !stack.empty()) {
           stack.back().key = s;
           expectKey = false;
         } else {

@@ -28,6 +28,20 @@ std::string dotQuoted(const std::string& s) {
 
 struct Invalid {};
 
+// The line and column of a byte offset (columns count bytes, as everywhere in semo).
+SourceRange rangeAt(FileId file, const std::string& text, std::size_t offset) {
+  std::uint32_t line = 1, column = 1;
+  for (std::size_t i = 0; i < offset && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return SourceRange{{file, line, column}, 1};
+}
+
 class Reader {
  public:
   Reader(const SourceManager& sources, FileId file, DiagnosticEngine& diags)
@@ -50,19 +64,7 @@ class Reader {
   TaskGraph tg_;
   std::map<std::string, std::uint32_t> taskIndex_, channelIndex_;
 
-  SourceRange at(const std::string& pointer) const {
-    const std::size_t offset = positions_.offsetOf(pointer);
-    std::uint32_t line = 1, column = 1;
-    for (std::size_t i = 0; i < offset && i < text_.size(); ++i) {
-      if (text_[i] == '\n') {
-        ++line;
-        column = 1;
-      } else {
-        ++column;
-      }
-    }
-    return SourceRange{{file_, line, column}, 1};
-  }
+  SourceRange at(const std::string& pointer) const { return rangeAt(file_, text_, positions_.offsetOf(pointer)); }
 
   [[noreturn]] void fail(const std::string& pointer, const std::string& message) {
     diags_.error(at(pointer), message);
@@ -83,6 +85,9 @@ class Reader {
   }
   std::int64_t integer(const json& o, const std::string& p, const char* key, std::int64_t min, std::int64_t max) {
     const json& v = member(o, p, key, json::value_t::number_integer, "an integer");
+    if (v.is_number_unsigned() && v.get<std::uint64_t>() > static_cast<std::uint64_t>(max)) {
+      fail(p + "/" + key, std::string("\"") + key + "\" must be between " + std::to_string(min) + " and " + std::to_string(max));
+    }
     const std::int64_t x = v.get<std::int64_t>();
     if (x < min || x > max) fail(p + "/" + key, std::string("\"") + key + "\" must be between " + std::to_string(min) + " and " + std::to_string(max));
     return x;
@@ -303,23 +308,23 @@ std::string taskGraphToJson(const TaskGraph& tg) {
 
 std::optional<TaskGraph> readTaskGraphJson(const SourceManager& sources, FileId file, DiagnosticEngine& diags) {
   const std::string& text = sources.text(file);
+  // The JSON parser would stop at a NUL byte and ignore what follows it.
+  if (const auto nul = text.find('\0'); nul != std::string::npos) {
+    diags.error(rangeAt(file, text, nul), "not valid JSON: a NUL byte");
+    return std::nullopt;
+  }
   json root;
   try {
     root = json::parse(text);
   } catch (const json::parse_error& e) {
-    std::uint32_t line = 1, column = 1;
-    const std::size_t end = e.byte == 0 ? 0 : std::min<std::size_t>(e.byte - 1, text.size());
-    for (std::size_t i = 0; i < end; ++i) {
-      if (text[i] == '\n') {
-        ++line;
-        column = 1;
-      } else {
-        ++column;
-      }
-    }
     std::string what = e.what();
     if (const auto colon = what.find("syntax error"); colon != std::string::npos) what = what.substr(colon);
-    diags.error(SourceRange{{file, line, column}, 1}, "not valid JSON: " + what);
+    diags.error(rangeAt(file, text, e.byte == 0 ? 0 : e.byte - 1), "not valid JSON: " + what);
+    return std::nullopt;
+  } catch (const json::exception& e) {  // a number past what a double holds: nlohmann gives no position
+    std::string what = e.what();
+    if (const auto bracket = what.find("] "); bracket != std::string::npos) what = what.substr(bracket + 2);
+    diags.error(rangeAt(file, text, 0), "not valid JSON: " + what);
     return std::nullopt;
   }
   return Reader(sources, file, diags).read(root);
