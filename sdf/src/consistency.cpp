@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <optional>
 
 namespace semo::sdf {
 
@@ -27,6 +28,42 @@ std::optional<Ratio> reduced(Wide num, Wide den) {
   den /= a;
   if (num > kMax || den > kMax) return std::nullopt;
   return Ratio{static_cast<std::int64_t>(num), static_cast<std::int64_t>(den)};
+}
+
+// A flat single-appearance schedule (every actor's firings in one run) exists exactly when the
+// channels whose initial tokens do not already cover the consumer's whole iteration form no cycle
+// (self-loops aside, which need only one firing's worth): then any topological order of them is
+// one, since a consumer run after its producer's run finds d + q[src] * p = d + q[dst] * c tokens.
+// Returns such an order (the smallest index first among the ready), or nullopt.
+std::optional<std::vector<ActorId>> flatSingleAppearanceOrder(const Graph& g, const std::vector<std::int64_t>& q) {
+  const std::size_t n = g.actors.size();
+  std::vector<std::vector<ActorId>> successors(n);
+  std::vector<std::size_t> waitingFor(n, 0);
+  for (const Channel& ch : g.channels) {
+    if (ch.selfLoop()) {
+      if (q[ch.source] > 0 && ch.initialTokens < ch.consumption) return std::nullopt;
+      continue;
+    }
+    if (static_cast<Wide>(ch.initialTokens) >= static_cast<Wide>(q[ch.target]) * ch.consumption) continue;
+    successors[ch.source].push_back(ch.target);
+    ++waitingFor[ch.target];
+  }
+  std::vector<ActorId> order;
+  std::vector<ActorId> ready;
+  for (ActorId a = 0; a < n; ++a) {
+    if (waitingFor[a] == 0) ready.push_back(a);
+  }
+  while (!ready.empty()) {
+    const auto smallest = std::min_element(ready.begin(), ready.end());
+    const ActorId a = *smallest;
+    ready.erase(smallest);
+    order.push_back(a);
+    for (ActorId b : successors[a]) {
+      if (--waitingFor[b] == 0) ready.push_back(b);
+    }
+  }
+  if (order.size() != n) return std::nullopt;
+  return order;
 }
 
 }  // namespace
@@ -119,7 +156,24 @@ Iteration runIteration(const Graph& g, const std::vector<std::int64_t>& q) {
   std::vector<std::int64_t> tokens(g.channels.size()), remaining = q;
   for (std::size_t c = 0; c < g.channels.size(); ++c) tokens[c] = g.channels[c].initialTokens;
   out.maxTokens = tokens;
-  // Each pass fires every enabled actor as often as its tokens allow (as a run of firings); a pass
+  if (std::optional<std::vector<ActorId>> order = flatSingleAppearanceOrder(g, q)) {
+    for (ActorId a : *order) {
+      if (q[a] == 0) continue;
+      out.schedule.push_back({a, q[a]});
+      for (std::size_t c : inputs[a]) {
+        if (!g.channels[c].selfLoop()) tokens[c] -= q[a] * g.channels[c].consumption;
+      }
+      for (std::size_t c : outputs[a]) {
+        if (g.channels[c].selfLoop()) continue;
+        tokens[c] += q[a] * g.channels[c].production;
+        out.maxTokens[c] = std::max(out.maxTokens[c], tokens[c]);
+      }
+    }
+    out.deadlockFree = true;
+    out.tokensAtEnd = std::move(tokens);
+    return out;
+  }
+  // No flat single-appearance schedule: each pass fires every enabled actor as often as its tokens allow (as a run of firings); a pass
   // without any firing with firings left is a deadlock.
   for (bool progress = true; progress;) {
     progress = false;

@@ -89,6 +89,26 @@ TEST(SdfConsistency, EachComponentIsScaledOnItsOwn) {
   EXPECT_EQ(q.firings, (std::vector<std::int64_t>{3, 2, 5, 1}));
 }
 
+TEST(SdfConsistency, AFlatSingleAppearanceScheduleWhereOneExists) {
+  // b is listed first and its 2 initial tokens enable one of its two firings: firing whatever is
+  // enabled would give "b a b"; a before b is single-appearance.
+  Graph g = graph("ba", {{'a', 'b', 4, 2, 2}});
+  RepetitionVector q = repetitionVector(g);
+  ASSERT_TRUE(q.consistent());
+  Iteration it = runIteration(g, q.firings);
+  EXPECT_TRUE(it.deadlockFree);
+  EXPECT_EQ(scheduleText(g, it.schedule), "a 2b");
+  EXPECT_EQ(it.maxTokens, (std::vector<std::int64_t>{6}));
+  // a and b wait for each other within an iteration (2 firings each, one token each way): no flat
+  // single-appearance schedule, but an iteration still runs.
+  Graph cycle = graph("cab", {{'c', 'a', 2, 1, 0}, {'a', 'b', 1, 1, 1}, {'b', 'a', 1, 1, 1}});
+  q = repetitionVector(cycle);
+  ASSERT_EQ(q.firings, (std::vector<std::int64_t>{1, 2, 2}));
+  it = runIteration(cycle, q.firings);
+  EXPECT_TRUE(it.deadlockFree);
+  EXPECT_EQ(scheduleText(cycle, it.schedule), "c a 2b a");
+}
+
 TEST(SdfConsistency, CountsPast64BitsAreAnErrorNotAWrapAround) {
   // Each stage multiplies the firings by 10^9: a fires 10^18 times per firing of c, which fits in
   // 64 bits; one more stage (10^27) does not.
@@ -99,7 +119,7 @@ TEST(SdfConsistency, CountsPast64BitsAreAnErrorNotAWrapAround) {
   // The schedule keeps runs, not single firings: 10^18 of them are one entry.
   Iteration it = runIteration(g, q.firings);
   EXPECT_TRUE(it.deadlockFree) << it.error;
-  EXPECT_EQ(scheduleText(g, it.schedule), "c d 1000000000b 1000000000000000000a");  // d has no channels
+  EXPECT_EQ(scheduleText(g, it.schedule), "c 1000000000b 1000000000000000000a d");  // d has no channels
   // a's 10^18 firings producing 10^9 tokens each are refused, not run into an overflow.
   Graph wide = g;
   wide.channels.push_back({"ad", 0, 3, 1000000000, 1000000000, 0, {}});
