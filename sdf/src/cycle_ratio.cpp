@@ -228,11 +228,18 @@ CycleRatioResult HsdfExpansion::evaluate(const std::vector<std::optional<std::in
         const auto d = static_cast<std::int64_t>(delay), t = static_cast<std::int64_t>(time);
         const std::int64_t common = std::gcd(t, d);
         const Ratio r{t / common, d / common};
-        cycleHeads.push_back(v);
-        ratio[v] = r;
-        value[v] = 0;
+        // The cycle's reference node: its smallest, which keeps its value while the cycle's ratio
+        // stays (with several cycles of one ratio, values measured from new references could make
+        // the policy go round; kept, each switch raises a value and the iteration ends).
+        std::size_t head = v;
+        for (std::size_t u = edges[policy[v]].to; u != v; u = edges[policy[u]].to) head = std::min(head, u);
+        cycleHeads.push_back(head);
+        if (!(round > 0 && same(ratio[head], r))) value[head] = 0;
+        ratio[head] = r;
         tail = static_cast<std::size_t>(std::find(walk.begin(), walk.end(), v) - walk.begin());
-        // The cycle's other nodes, backwards from v.
+        // Rotate the cycle's part of the walk to start at the reference.
+        std::rotate(walk.begin() + static_cast<std::ptrdiff_t>(tail), std::find(walk.begin() + static_cast<std::ptrdiff_t>(tail), walk.end(), head), walk.end());
+        // The cycle's other nodes, backwards from the reference.
         for (std::size_t i = walk.size(); i-- > tail + 1;) {
           const std::size_t x = walk[i];
           const Edge& e = edges[policy[x]];
