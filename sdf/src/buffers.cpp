@@ -38,10 +38,10 @@ __extension__ typedef __int128 Wide;  // GCC and Clang: exact cross products of 
 // a is a longer period (a lower throughput) than b.
 bool slower(const Period& a, const Period& b) { return static_cast<Wide>(a.num) * b.den > static_cast<Wide>(b.num) * a.den; }
 
-struct LearntClause {
+// Where a clause comes from: the ratio of its cycle, or a deadlock.
+struct LearntFrom {
   bool deadlock = false;  // from a cycle without delay: holds for every target
   Period ratio;
-  CoverClause clause;
 };
 
 class FrontSearch {
@@ -131,9 +131,10 @@ class FrontSearch {
     for (const RatioCycle& cycle : r.cycles) {
       if (!cycle.deadlock && target && slower(*target, cycle.ratio)) continue;  // below the target: no obstacle
       if (!cycle.deadlock && !target) continue;
-      LearntClause learnt{cycle.deadlock, cycle.ratio, {}};
-      for (const SpaceOnCycle& s : cycle.space) learnt.clause.push_back({static_cast<std::uint32_t>(s.channel), onGrid(s.channel, s.capacityThatMovesIt)});
-      clauses_.push_back(std::move(learnt));
+      CoverClause clause;
+      for (const SpaceOnCycle& s : cycle.space) clause.push_back({static_cast<std::uint32_t>(s.channel), onGrid(s.channel, s.capacityThatMovesIt)});
+      learnt_.push_back({cycle.deadlock, cycle.ratio});
+      clauses_.push_back(std::move(clause));
       any = true;
     }
     return any;
@@ -143,15 +144,15 @@ class FrontSearch {
   // period below it.
   bool query(const std::optional<Period>& target, std::int64_t needed, std::vector<std::int64_t>& capacities, CycleRatioResult& r) {
     for (;;) {
-      std::vector<const CoverClause*> active;
-      for (const LearntClause& l : clauses_) {
-        if (l.deadlock || (target && !slower(*target, l.ratio))) active.push_back(&l.clause);
+      std::vector<std::size_t> active;
+      for (std::size_t i = 0; i < learnt_.size(); ++i) {
+        if (learnt_[i].deadlock || (target && !slower(*target, learnt_[i].ratio))) active.push_back(i);
       }
-      if (std::any_of(active.begin(), active.end(), [](const CoverClause* c) { return c->empty(); })) {
+      if (std::any_of(active.begin(), active.end(), [&](std::size_t i) { return clauses_[i].empty(); })) {
         out_.error = "no distribution reaches the period";  // cannot happen above the unbounded period
         return false;
       }
-      CoverResult cover = cheapestCover(lowest_, counted_, active, needed);
+      CoverResult cover = cheapestCover(lowest_, counted_, clauses_, active, needed, parts_);
       coverNodes_ += cover.nodes;
       if (!cover.capacities) {
         out_.error = "no distribution reaches the period";
@@ -174,7 +175,9 @@ class FrontSearch {
   ParetoFront& out_;
   std::vector<std::int64_t> lowest_, step_;
   std::vector<char> counted_;
-  std::vector<LearntClause> clauses_;
+  std::vector<LearntFrom> learnt_;  // per clause
+  std::vector<CoverClause> clauses_;
+  CoverParts parts_;
   std::uint64_t coverNodes_ = 0;
 };
 

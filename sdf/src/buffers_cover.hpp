@@ -6,8 +6,10 @@
 // the literals of the branches before it (their channels stay below those capacities), so no
 // distribution is reached twice; it prunes a branch whose cost plus a lower bound on what its
 // unsatisfied clauses still need (over clauses with pairwise disjoint channels, each at least its
-// cheapest raise) cannot beat the best found.
+// cheapest raise) passes a bound, raised step by step from a lower bound (iterative deepening), so
+// that the first cover found is a cheapest.
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -24,10 +26,15 @@ struct CoverResult {
   std::uint64_t nodes = 0;                              // branch and bound nodes visited
 };
 
+// Clauses that share no channel with the others form independent parts, each solved on its own
+// (the cheapest cover is the lowest capacities raised by each part's cheapest raise); a part's
+// answer is kept, by its clauses and its channels' lowest capacities, for the next call.
+using CoverParts = std::map<std::vector<std::int64_t>, std::vector<CoverLiteral>>;
+
 // `lowest`: per channel, the smallest capacity; `counted`: whether the channel counts in the total
-// (self-loops do not, and appear in no clause). The search stops at the first cover whose total is
-// `enough` (a total known to be needed anyway).
-CoverResult cheapestCover(const std::vector<std::int64_t>& lowest, const std::vector<char>& counted, const std::vector<const CoverClause*>& clauses,
-                          std::int64_t enough);
+// (self-loops do not, and appear in no clause). `active`: the indices of the clauses to meet in
+// `clauses`. `neededTotal`: a total every cover is known to need (a start for the search).
+CoverResult cheapestCover(const std::vector<std::int64_t>& lowest, const std::vector<char>& counted, const std::vector<CoverClause>& clauses,
+                          const std::vector<std::size_t>& active, std::int64_t neededTotal, CoverParts& known);
 
 }  // namespace semo::sdf
