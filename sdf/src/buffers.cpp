@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <numeric>
+#include <set>
 
 #include "buffers_cover.hpp"
+#include "semo/sdf/automorphisms.hpp"
 #include "semo/sdf/cycle_ratio.hpp"
 
 // The front, exactly, by learning from cycles (why nothing better is missed).
@@ -57,6 +59,7 @@ class FrontSearch {
       step_[c] = std::gcd(g.channels[c].production, g.channels[c].consumption);
       counted_[c] = g.channels[c].selfLoop() ? 0 : 1;
     }
+    automorphisms_ = findAutomorphisms(g);
   }
 
   void run() {
@@ -125,7 +128,8 @@ class FrontSearch {
     return lowest_[c] + (capacity - lowest_[c] + step_[c] - 1) / step_[c] * step_[c];
   }
 
-  // Keeps a clause for each cycle of `r` that holds the target back. Returns whether one did.
+  // Keeps a clause for each cycle of `r` that holds the target back, with its images under the
+  // graph's automorphisms. Returns whether a cycle did.
   bool learn(const CycleRatioResult& r, const std::optional<Period>& target) {
     bool any = false;
     for (const RatioCycle& cycle : r.cycles) {
@@ -133,11 +137,30 @@ class FrontSearch {
       if (!cycle.deadlock && !target) continue;
       CoverClause clause;
       for (const SpaceOnCycle& s : cycle.space) clause.push_back({static_cast<std::uint32_t>(s.channel), onGrid(s.channel, s.capacityThatMovesIt)});
-      learnt_.push_back({cycle.deadlock, cycle.ratio});
-      clauses_.push_back(std::move(clause));
       any = true;
+      // The orbit of the clause (breadth first over the generators; bounded, any part of it is sound).
+      std::vector<CoverClause> orbit{clause};
+      keep(cycle, clause);
+      for (std::size_t i = 0; i < orbit.size() && orbit.size() < kMaxOrbit; ++i) {
+        for (const Automorphism& sigma : automorphisms_) {
+          CoverClause image = orbit[i];
+          for (CoverLiteral& l : image) l.channel = static_cast<std::uint32_t>(sigma.channel[l.channel]);
+          if (keep(cycle, image)) orbit.push_back(std::move(image));
+        }
+      }
     }
     return any;
+  }
+
+  // Adds the clause unless it is known (with the same origin). Returns whether it was new.
+  bool keep(const RatioCycle& cycle, CoverClause clause) {
+    std::sort(clause.begin(), clause.end(), [](const CoverLiteral& a, const CoverLiteral& b) { return a.channel < b.channel; });
+    std::vector<std::int64_t> key{cycle.deadlock ? 1 : 0, cycle.ratio.num, cycle.ratio.den};
+    for (const CoverLiteral& l : clause) key.insert(key.end(), {static_cast<std::int64_t>(l.channel), l.atLeast});
+    if (!known_.insert(std::move(key)).second) return false;
+    learnt_.push_back({cycle.deadlock, cycle.ratio});
+    clauses_.push_back(std::move(clause));
+    return true;
   }
 
   // The smallest total (at least `needed`) whose distribution has no deadlock and, with a target, a
@@ -175,6 +198,9 @@ class FrontSearch {
   ParetoFront& out_;
   std::vector<std::int64_t> lowest_, step_;
   std::vector<char> counted_;
+  static constexpr std::size_t kMaxOrbit = 10'000;
+  std::vector<Automorphism> automorphisms_;
+  std::set<std::vector<std::int64_t>> known_;  // the clauses kept, with their origins
   std::vector<LearntFrom> learnt_;  // per clause
   std::vector<CoverClause> clauses_;
   CoverParts parts_;
