@@ -11,25 +11,38 @@
 // The front, exactly, by learning from cycles (why nothing better is missed).
 //
 // Write P(d) for the period with the distribution d: the maximum cycle ratio of the HSDF expansion
-// with space edges (cycle_ratio.hpp). A cycle of that expansion under d whose ratio is r, and whose
-// space edges belong to channels S, is a cycle under every distribution d' that leaves each channel
-// of S below the capacity that moves its edge (at most d there, the edges only come from later
-// consumer firings, which end no earlier: the cycle's constraints still hold, and so P(d') >= r).
-// So every distribution with a period below r raises some channel of S to the capacity that moves
-// it: a clause. A deadlock's cycle gives a clause every distribution with a throughput must meet.
+// with space edges (cycle_ratio.hpp). Take a cycle of that expansion under d, of ratio r, whose
+// space edges belong to the channels S. Under any distribution d' that leaves each channel of S
+// below the capacity that moves its edge on the cycle (whatever d' does elsewhere), that producer
+// firing waits for the same consumer firing or a later one, which ends no earlier (firings of an
+// actor end in order): the cycle's inequalities still hold in the self-timed execution, so
+// P(d') >= r. Hence every distribution with a period below r raises some channel of S to the
+// capacity that moves its edge: a clause. A cycle without delay (a deadlock) gives a clause that
+// every distribution with a throughput meets.
 //
 // One query: the smallest total whose period is below p (or without deadlock). The cheapest
 // distribution meeting every clause learnt from cycles of ratio >= p (buffers_cover.hpp, exact)
 // costs no more than the answer, since the answer meets them all; if its period is below p it is
-// the answer, else its critical cycle (ratio >= p) gives a clause it breaks, and the query goes on.
-// Clauses are kept: those of ratio >= p still hold for every later (smaller) p.
+// the answer, else its critical cycle (ratio >= p) gives a clause it breaks, and the query goes on
+// (it ends: each round excludes the distribution just evaluated). Clauses are kept: those of ratio
+// >= p hold for every later, smaller p.
 //
 // The front: after the smallest total without deadlock, each query asks for a period below the best
 // so far. An answer of the same total replaces the point (a better period for that total); a larger
 // total T' means no total below T' does better, so the previous point stands. It ends at the period
-// with unbounded channels. Capacities are taken on each channel's grid (its smallest capacity plus
-// multiples of gcd(p, c); between them the free space a producer can use is the same) and never
-// below the smallest with which the channel alone does not deadlock.
+// with unbounded channels.
+//
+// Symmetry: for an automorphism s of the graph (automorphisms.hpp, each checked exactly), the
+// distribution d and its image s(d) (s(d)[s(c)] = d[c]) have the same expansion up to renaming, so
+// the same period. A distribution d' that leaves every s(c), c in S, below the clause's capacities
+// is the image of s^-1(d'), which leaves every c in S below them: P(d') = P(s^-1(d')) >= r. So the
+// clause's images are clauses too; learning them (or part of them) only learns more true clauses.
+//
+// Capacities: only each channel's grid, its smallest capacity plus multiples of g = gcd(p, c), is
+// tried. Tokens and claimed space on a channel always add up to d plus a multiple of g and every
+// claim is a multiple of g, so a capacity off the grid lets a producer claim exactly what the grid
+// value below it lets it claim, for a larger total; and below the smallest capacity the channel
+// alone deadlocks.
 
 namespace semo::sdf {
 
