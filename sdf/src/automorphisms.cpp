@@ -5,6 +5,7 @@
 #include <map>
 #include <numeric>
 #include <tuple>
+#include <unordered_map>
 
 namespace semo::sdf {
 
@@ -23,7 +24,7 @@ class Refiner {
 
   Colours initial() {
     Colours out(g_.actors.size());
-    for (std::size_t a = 0; a < out.size(); ++a) out[a] = name({-1, g_.actors[a].executionTime});
+    for (std::size_t a = 0; a < out.size(); ++a) out[a] = name(mix(mix(0x5eed) ^ static_cast<std::uint64_t>(g_.actors[a].executionTime)));
     return out;
   }
 
@@ -51,36 +52,46 @@ class Refiner {
     return static_cast<std::size_t>(std::unique(c.begin(), c.end()) - c.begin());
   }
 
-  std::uint32_t name(const std::vector<std::int64_t>& signature) {
+  static std::uint64_t mix(std::uint64_t x) {  // splitmix64's finaliser
+    x += 0x9e3779b97f4a7c15ull;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+    return x ^ (x >> 31);
+  }
+
+  std::uint32_t name(std::uint64_t signature) {
     auto [it, fresh] = names_.try_emplace(signature, next_);
     if (fresh) ++next_;
     return it->second;
   }
 
-  // Each actor's new colour: its colour and its channels (direction, rates, tokens, the colour at
-  // the other end).
+  // Each actor's new colour: its colour and the multiset of its channels (direction, rates, tokens,
+  // the colour at the other end), hashed (a sum over the channels: the order does not matter). Two
+  // different neighbourhoods that collide only merge colours, which can lose an automorphism but
+  // never admit a wrong one: every candidate is checked channel by channel.
   Colours step(const Colours& colours) {
     Colours out(colours.size());
-    std::vector<std::array<std::int64_t, 5>> around;
     for (std::size_t a = 0; a < colours.size(); ++a) {
-      around.clear();
+      std::uint64_t around = 0;
       for (std::size_t c : incident_[a]) {
         const Channel& ch = g_.channels[c];
-        const std::int64_t direction = ch.selfLoop() ? 0 : ch.source == a ? 1 : 2;
-        const std::int64_t other = colours[ch.source == a ? ch.target : ch.source];
-        around.push_back({direction, ch.production, ch.consumption, ch.initialTokens, other});
+        const std::uint64_t direction = ch.selfLoop() ? 0 : ch.source == a ? 1 : 2;
+        const std::uint64_t other = colours[ch.source == a ? ch.target : ch.source];
+        std::uint64_t h = mix(direction);
+        for (std::uint64_t x : {static_cast<std::uint64_t>(ch.production), static_cast<std::uint64_t>(ch.consumption),
+                                static_cast<std::uint64_t>(ch.initialTokens), other}) {
+          h = mix(h ^ x);
+        }
+        around += h;
       }
-      std::sort(around.begin(), around.end());
-      std::vector<std::int64_t> signature{colours[a]};
-      for (const auto& entry : around) signature.insert(signature.end(), entry.begin(), entry.end());
-      out[a] = name(signature);
+      out[a] = name(mix(mix(colours[a]) ^ around));
     }
     return out;
   }
 
   const Graph& g_;
   std::vector<std::vector<std::size_t>> incident_;
-  std::map<std::vector<std::int64_t>, std::uint32_t> names_;
+  std::unordered_map<std::uint64_t, std::uint32_t> names_;
   std::uint32_t next_ = 0;
 };
 

@@ -88,28 +88,22 @@ class FrontSearch {
       return;
     }
     out_.best = unbounded.period;
-    CycleRatioResult first;
-    if (!evaluate(lowest_, first)) return;
-    if (first.deadlock) out_.points.push_back({total(lowest_), lowest_, true, {}});
-    learn(first, std::nullopt);
-    std::optional<Period> target;  // none: only a throughput
-    BufferPoint current;
-    std::int64_t needed = total(lowest_);
-    for (;;) {
-      std::vector<std::int64_t> capacities;
-      CycleRatioResult r;
-      if (!query(target, needed, capacities, r)) return;
-      const std::int64_t size = total(capacities);
-      if (target && size == current.total) {
-        current.capacities = capacities;
-        current.period = r.period;
-      } else {
-        if (target) out_.points.push_back(current);
-        current = {size, capacities, false, r.period};
+    std::vector<std::int64_t> capacities = lowest_;
+    CycleRatioResult r;
+    if (!evaluate(capacities, r)) return;
+    if (r.deadlock) {
+      out_.points.push_back({total(lowest_), lowest_, true, {}});
+      learn(r, std::nullopt);
+      if (!query(std::nullopt, total(lowest_), capacities, r)) return;
+    }
+    BufferPoint current{total(capacities), capacities, false, r.period};
+    while (slower(current.period, out_.best)) {
+      if (!query(current.period, current.total, capacities, r)) {
+        out_.points.push_back(current);  // reached, but perhaps not the best of its total: the error says so
+        return;
       }
-      needed = size;
-      target = r.period;
-      if (!slower(r.period, out_.best)) break;
+      if (total(capacities) != current.total) out_.points.push_back(current);
+      current = {total(capacities), capacities, false, r.period};
     }
     out_.points.push_back(current);
   }
