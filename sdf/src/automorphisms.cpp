@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <iterator>
 #include <map>
 #include <numeric>
 #include <tuple>
@@ -133,20 +134,21 @@ class Search {
       cellsA[a[x]].push_back(x);
       cellsB[b[x]].push_back(x);
     }
-    // First guess: the colours that are one actor map it, those of the same actors in both fix them
-    // (cheap, and enough when the rest of the graph is untouched, as for a swap of two branches).
+    // First guess: within each colour, the actors in both colourings stay, the others pair off in
+    // order (cheap, and right when the rest of the graph is untouched, as for a swap of two branches).
     std::vector<ActorId> guess(a.size());
     bool guessed = true;
     for (const auto& [colour, members] : cellsA) {
       const std::vector<ActorId>& others = cellsB[colour];
-      if (members.size() == 1) {
-        guess[members.front()] = others.front();
-      } else if (members == others) {
-        for (ActorId x : members) guess[x] = x;
-      } else {
+      if (members.size() != others.size()) {
         guessed = false;
         break;
       }
+      std::vector<ActorId> onlyA, onlyB;
+      std::set_difference(members.begin(), members.end(), others.begin(), others.end(), std::back_inserter(onlyA));
+      std::set_difference(others.begin(), others.end(), members.begin(), members.end(), std::back_inserter(onlyB));
+      for (ActorId x : members) guess[x] = x;
+      for (std::size_t i = 0; i < onlyA.size(); ++i) guess[onlyA[i]] = onlyB[i];
     }
     if (guessed && completeAutomorphism(g_, guess, out)) return true;
     auto split = std::find_if(cellsA.begin(), cellsA.end(), [](const auto& cell) { return cell.second.size() > 1; });
