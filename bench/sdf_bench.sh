@@ -11,7 +11,8 @@ benchmarks="$(dirname "$0")/../specs/benchmarks"
 printf '%-32s %12s %10s %14s %7s %12s %10s\n' graph period analysis front points distributions seconds
 for g in sdf3/h263decoder sdf3/modem sdf3/samplerate sdf3/satellite sdf3/mp3decoder_granule_parallelism \
          generated/mp3family_b4_g16 generated/mp3family_b8_g16 generated/mp3family_b8_g8_skew10 generated/mp3family_b16_g32 \
-         generated/mp3family_b16_g32_skew5 generated/mp3family_b32_g8 generated/mp3family_b64_g2 generated/mp3family_b64_g2_skew1; do
+         generated/mp3family_b16_g32_skew5 generated/mp3family_b32_g8 generated/mp3family_b32_g32_skew2 generated/mp3family_b64_g2 \
+         generated/mp3family_b64_g2_skew1; do
   start=$(date +%s.%N)
   json=$("$exe" sdf --sdf3 "$benchmarks/$g.xml" --json || true)
   mid=$(date +%s.%N)
