@@ -1,13 +1,14 @@
 #pragma once
 // The smallest total capacity that meets a set of "raise one of these" constraints (the conflicts the
 // buffer exploration learns from cycles, buffers.cpp): each clause is satisfied when at least one of
-// its channels has at least the capacity it names. An exact branch and bound: it branches on an
-// unsatisfied clause with the fewest ways out, one branch per literal, and in the i-th branch forbids
-// the literals of the branches before it (their channels stay below those capacities), so no
-// distribution is reached twice; it prunes a branch whose cost plus a lower bound on what its
-// unsatisfied clauses still need (over clauses with pairwise disjoint channels, each at least its
-// cheapest raise) passes a bound, raised step by step from a lower bound (iterative deepening), so
-// that the first cover found is a cheapest.
+// its channels has at least the capacity it names. Exact, by branch and bound: a clause with a
+// single way out left is taken; otherwise it branches on the raise that meets the most open clauses
+// per unit of total, either made or forbidden (the channel stays below it), so the two branches
+// share no distribution and together hold them all. A branch is pruned when its total plus a lower
+// bound on what its open clauses still need (over clauses with pairwise disjoint channels, each at
+// least its cheapest raise) passes the current bound; the bound starts at a total every cover needs
+// and rises to the smallest pruned total each round (iterative deepening), so the first cover found
+// is a cheapest one.
 #include <cstdint>
 #include <map>
 #include <optional>
