@@ -1,11 +1,14 @@
 #pragma once
 // Buffer capacities and the throughput they allow. Per channel, the smallest capacity with which it
 // alone never deadlocks is p + c - g + (d mod g) (rates p, c, g = gcd(p, c), d initial tokens; at
-// least d), and capacities between multiples of g above it change nothing. The exploration walks
-// distributions in order of total size from those bounds, enlarging only channels whose space held
-// an actor back (throughput.hpp), so each total size's best throughput is found, and with it the
-// Pareto front: the smallest total for each throughput reached, up to the maximal (unbounded)
-// throughput. Totals count every channel but self-loops, as SDF3 does.
+// least d), and capacities between multiples of g above it change nothing. The Pareto front (the
+// smallest total for each throughput reached, up to the maximal, unbounded, throughput) is found
+// exactly by learning from cycles (buffers.cpp says why nothing is missed): each distribution's
+// period is the maximum cycle ratio of the HSDF expansion with space edges (cycle_ratio.hpp, equal
+// to the self-timed period of throughput.hpp), a cycle that holds a target period back says which
+// channels must grow, and an exact cover search picks the cheapest distribution that grows them;
+// what is learnt holds for the images of a distribution under the graph's automorphisms
+// (automorphisms.hpp) too. Totals count every channel but self-loops, as SDF3 does.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -29,7 +32,7 @@ struct ParetoFront {
   std::vector<BufferPoint> points;  // increasing total, decreasing period; the first may deadlock
   Period best;                      // the period with unbounded channels
   std::uint64_t distributions = 0;  // distributions whose throughput was computed
-  std::string error;                // not finished (a limit), or no throughput at all
+  std::string error;                // not finished (a limit), or no throughput at all; empty: the front is exact and complete
 };
 
 ParetoFront bufferParetoFront(const Graph& g, const std::vector<std::int64_t>& q, std::uint64_t maxDistributions = 1'000'000);
