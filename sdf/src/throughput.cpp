@@ -118,12 +118,9 @@ class SelfTimed {
     }
     active_.assign(actors_.size(), {});
     struct Seen {
-      std::int64_t time, completed, step;
+      std::int64_t time, completed;
     };
     std::unordered_map<std::vector<std::int64_t>, Seen, StateHash> seen;
-    lastBlocked_.assign(m, -1);
-    tokenRefresh_.assign(m, -1);
-    spaceRefresh_.assign(m, -1);
     std::int64_t time = 0;
     std::vector<std::int64_t> key;
     for (;;) {
@@ -132,7 +129,6 @@ class SelfTimed {
       if (!busy) {
         out.deadlock = true;
         out.states = seen.size();
-        blockedSince(step_, out);
         return out;
       }
       key = tokens_;
@@ -143,13 +139,11 @@ class SelfTimed {
         key.push_back(static_cast<std::int64_t>(a.size()));
         key.insert(key.end(), a.begin(), a.end());
       }
-      auto [it, fresh] = seen.try_emplace(key, Seen{time, completedRef_, step_});
+      auto [it, fresh] = seen.try_emplace(key, Seen{time, completedRef_});
       if (!fresh) {
         // Whole iterations lie between two equal states of a consistent connected graph.
         std::int64_t iterations = (completedRef_ - it->second.completed) / q_[actors_[0]];
         std::int64_t elapsed = time - it->second.time;
-        blockedSince(it->second.step, out);
-        if (options_.trackDependencies) criticalSince(it->second.step, out);
         std::int64_t d = std::gcd(elapsed, iterations);
         out.period = {elapsed / d, iterations / d};
         out.states = seen.size();
@@ -160,7 +154,6 @@ class SelfTimed {
         out.states = seen.size();
         return out;
       }
-      ++step_;
       std::int64_t step = INT64_MAX;
       for (const std::vector<std::int64_t>& a : active_) {
         if (!a.empty()) step = std::min(step, a.front());
@@ -192,12 +185,8 @@ class SelfTimed {
       for (std::size_t a = 0; a < actors_.size(); ++a) {
         std::int64_t times = INT64_MAX;
         for (std::size_t i : inputs_[a]) times = std::min(times, tokens_[i] / g_.channels[channels_[i]].consumption);
-        const std::int64_t byTokens = times;
         for (std::size_t i : outputs_[a]) {
-          if (space_[i] < 0) continue;
-          std::int64_t bySpace = space_[i] / g_.channels[channels_[i]].production;
-          if (bySpace < byTokens) lastBlocked_[i] = step_;
-          times = std::min(times, bySpace);
+          if (space_[i] >= 0) times = std::min(times, space_[i] / g_.channels[channels_[i]].production);
         }
         if (times == 0) continue;
         if (times > kMaxConcurrent) {
@@ -206,16 +195,6 @@ class SelfTimed {
           return false;
         }
         changed = true;
-        if (options_.trackDependencies) {
-          // What arrived at this instant and let the firing start: tokens (from the producer) or
-          // space (freed by the consumer).
-          for (std::size_t i : inputs_[a]) {
-            if (tokenRefresh_[i] == step_) dependencies_.push_back({localIndex_[g_.channels[channels_[i]].source], a, SIZE_MAX, step_});
-          }
-          for (std::size_t i : outputs_[a]) {
-            if (space_[i] >= 0 && spaceRefresh_[i] == step_) dependencies_.push_back({localIndex_[g_.channels[channels_[i]].target], a, i, step_});
-          }
-        }
         for (std::size_t i : inputs_[a]) tokens_[i] -= times * g_.channels[channels_[i]].consumption;
         for (std::size_t i : outputs_[a]) {
           if (space_[i] >= 0) space_[i] -= times * g_.channels[channels_[i]].production;
@@ -238,43 +217,10 @@ class SelfTimed {
     return true;
   }
 
-  // The storage dependencies of step `from` on that lie on a cycle of dependencies, as global
-  // channel flags.
-  void criticalSince(std::int64_t from, ThroughputResult& out) const {
-    const std::size_t n = actors_.size();
-    std::vector<std::vector<std::size_t>> next(n);
-    for (const Dependency& d : dependencies_) {
-      if (d.step >= from) next[d.from].push_back(d.to);
-    }
-    std::size_t count = 0;
-    const std::vector<std::size_t> component = strongComponents(next, count);
-    out.spaceCritical.assign(g_.channels.size(), 0);
-    for (const Dependency& d : dependencies_) {
-      // On a cycle: both ends in one component (a self-dependency is a cycle of its own).
-      if (d.step < from || d.channel == SIZE_MAX || component[d.from] != component[d.to]) continue;
-      // Space that arrived as the firing started but had not held it back is no dependency.
-      if (lastBlocked_[d.channel] < from) continue;
-      out.spaceCritical[channels_[d.channel]] = 1;
-    }
-  }
-
-  // The channels that held an actor back at or after step `from`, as global channel flags.
-  void blockedSince(std::int64_t from, ThroughputResult& out) const {
-    out.spaceBlocked.assign(g_.channels.size(), 0);
-    for (std::size_t i = 0; i < channels_.size(); ++i) {
-      if (lastBlocked_[i] >= from) out.spaceBlocked[channels_[i]] = 1;
-    }
-  }
-
   void finish(std::size_t a, std::int64_t times) {
-    for (std::size_t i : outputs_[a]) {
-      tokens_[i] += times * g_.channels[channels_[i]].production;
-      tokenRefresh_[i] = step_;
-    }
+    for (std::size_t i : outputs_[a]) tokens_[i] += times * g_.channels[channels_[i]].production;
     for (std::size_t i : inputs_[a]) {
-      if (space_[i] < 0) continue;
-      space_[i] += times * g_.channels[channels_[i]].consumption;
-      spaceRefresh_[i] = step_;
+      if (space_[i] >= 0) space_[i] += times * g_.channels[channels_[i]].consumption;
     }
     if (a == 0) completedRef_ += times;
   }
@@ -292,22 +238,12 @@ class SelfTimed {
   std::vector<std::vector<std::int64_t>> active_;           // per local actor: remaining times, sorted
   std::int64_t completedRef_ = 0;                           // firings finished by the component's first actor
   std::int64_t zeroTimeRounds_ = 0;
-  std::int64_t step_ = 0;                                   // states visited so far
-  std::vector<std::int64_t> lastBlocked_;                   // per local channel: last step its space held an actor back
-  std::vector<std::int64_t> tokenRefresh_, spaceRefresh_;   // per local channel: last step tokens / space arrived
-  struct Dependency {
-    std::size_t from, to, channel;  // local actors; channel: local storage channel, SIZE_MAX for tokens
-    std::int64_t step;
-  };
-  std::vector<Dependency> dependencies_;
 };
 
 }  // namespace
 
 ThroughputResult throughput(const Graph& g, const std::vector<std::int64_t>& q, const ThroughputOptions& options) {
   ThroughputResult slowest;
-  slowest.spaceBlocked.assign(g.channels.size(), 0);
-  slowest.spaceCritical.assign(g.channels.size(), 0);
   bool first = true;
   for (const auto& [actors, channels] : components(g, options)) {
     // An actor alone, with nothing to wait for (no self-loop), limits nothing: it may fire at once
@@ -336,17 +272,7 @@ ThroughputResult throughput(const Graph& g, const std::vector<std::int64_t>& q, 
       return r;
     }
     Wide mine = static_cast<Wide>(r.period.num) * slowest.period.den, theirs = static_cast<Wide>(slowest.period.num) * r.period.den;
-    if (first || mine > theirs) {
-      slowest.period = r.period;
-      slowest.spaceBlocked = r.spaceBlocked;
-      if (!r.spaceCritical.empty()) slowest.spaceCritical = r.spaceCritical;
-      else slowest.spaceCritical.assign(g.channels.size(), 0);
-    } else if (mine == theirs) {
-      for (std::size_t c = 0; c < g.channels.size(); ++c) {
-        slowest.spaceBlocked[c] |= r.spaceBlocked[c];
-        if (!r.spaceCritical.empty()) slowest.spaceCritical[c] |= r.spaceCritical[c];
-      }
-    }
+    if (first || mine > theirs) slowest.period = r.period;
     first = false;
   }
   return slowest;

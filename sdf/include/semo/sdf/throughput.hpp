@@ -25,21 +25,12 @@ struct ThroughputResult {
   Period period;                  // when not deadlocked
   std::uint64_t states = 0;       // states stored before the first repetition
   std::string error;              // not decided (a limit, or counts past 64 bits)
-  // Per channel: in the periodic part of the execution (or in the deadlocked state) some actor had
-  // the tokens to fire more often than the channel's free space allowed. Only enlarging such a
-  // channel can raise the throughput (the buffer exploration, buffers.hpp, relies on this).
-  std::vector<char> spaceBlocked;
-  // With trackDependencies, per channel: in the periodic part, waiting for its space delayed a
-  // firing on a cycle of such delays (the storage dependencies on a critical cycle, which alone
-  // can limit the throughput). Always a subset of spaceBlocked' candidates worth enlarging.
-  std::vector<char> spaceCritical;
 };
 
 struct ThroughputOptions {
   // Per channel, the most tokens it may hold (nullopt: unbounded). Self-loops are never bounded.
   std::vector<std::optional<std::int64_t>> capacities;
   std::uint64_t maxStates = 10'000'000;
-  bool trackDependencies = false;  // fill spaceCritical (costs memory per step)
 };
 
 // `q` must be the graph's repetition vector; a graph of several components is as slow as its
