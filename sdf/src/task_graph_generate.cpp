@@ -443,26 +443,24 @@ class Generator {
     return std::move(b.g);
   }
 
-  // Active tasks and channels, an interface port left to the control task only where no active
-  // implementation connects it, and the control task's rates from the repetition vector.
+  // Active tasks and channels, and the control task's rates from the repetition vector. An input
+  // port that one active implementation connects and another leaves to the control task takes the
+  // data channel (the control task would be a second feeder); an output port left to the control
+  // task by an active implementation feeds it as well as any data channel (SDF fan-out: each
+  // consumer gets every token).
   void finishScenario(Builder& b, Scenario& s, std::vector<std::uint32_t> channels, const model::Mode& mode) {
     std::sort(channels.begin(), channels.end());
     channels.erase(std::unique(channels.begin(), channels.end()), channels.end());
     const TaskGraph& g = b.g;
-    std::set<std::pair<std::uint32_t, std::string>> dataPorts;
+    std::set<std::pair<std::uint32_t, std::string>> dataInputs;
     for (std::uint32_t c : channels) {
-      if (g.channels[c].control) continue;
-      dataPorts.insert({g.channels[c].fromTask, g.channels[c].fromPort});
-      dataPorts.insert({g.channels[c].toTask, g.channels[c].toPort});
+      if (!g.channels[c].control) dataInputs.insert({g.channels[c].toTask, g.channels[c].toPort});
     }
     std::vector<std::uint32_t> kept;
     std::map<std::pair<std::uint32_t, std::string>, std::uint32_t> feeder;
     for (std::uint32_t c : channels) {
       const TaskChannel& ch = g.channels[c];
-      const bool taskSideIsTarget = ch.toTask != 0;
-      if (ch.control && dataPorts.count(taskSideIsTarget ? std::pair{ch.toTask, ch.toPort} : std::pair{ch.fromTask, ch.fromPort}) != 0) {
-        continue;
-      }
+      if (ch.control && ch.fromTask == 0 && dataInputs.count({ch.toTask, ch.toPort}) != 0) continue;
       if (ch.toTask != 0) {
         auto [it, fresh] = feeder.try_emplace({ch.toTask, ch.toPort}, c);
         if (!fresh) {

@@ -45,6 +45,16 @@ const char* kStrategy = R"(<?xml version="1.0"?>
       <channel from="tone.cmd" to="motor.cmd"/>
     </implementation>
   </service>
+  <service name="log" kind="primitive">
+    <implementation robot="Ev3Robot">
+      <task name="motor" exec="1 MSEC">
+        <port name="cmd" dir="in" rate="1"/>
+        <port name="tacho" dir="out" rate="1"/>
+      </task>
+      <task name="logger" exec="1 MSEC"><port name="tacho" dir="in" rate="1"/></task>
+      <channel from="motor.tacho" to="logger.tacho"/>
+    </implementation>
+  </service>
   <value name="T.dist">
     <domain kind="threshold" thresholds="10"/>
     <implementation robot="Ev3Robot">
@@ -142,6 +152,28 @@ T.main { case (M1): default: mode = M1 }
   const Diagnostic& d = g->diags.diagnostics().front();
   EXPECT_NE(d.message.find("would feed input port 'motor.cmd' from two tasks at once ('planner' and 'tone')"), std::string::npos) << d.message;
   EXPECT_EQ(d.range.begin.line, 5u);  // the mode
+}
+
+// drive leaves motor.tacho to the control task and takes motor.cmd from its planner; log connects
+// motor.tacho to its logger and leaves motor.cmd to the control task. Together: the planner alone
+// feeds motor.cmd, and motor.tacho fans out to the control task and the logger.
+TEST(SdfTaskGraph, ConnectedInputsWinAndOutputsFanOut) {
+  auto g = generate(R"(
+T: Ev3Robot e[1]
+T.Act.Go { drive("there") }
+T.Rec.Log { log() }
+T.M1 { set(Act, Go) set(Rec, Log) }
+T.main { case (M1): default: mode = M1 }
+)", "fanout");
+  ASSERT_TRUE(g->graphs);
+  const TaskGraph& tg = g->graphs->front();
+  ASSERT_EQ(tg.scenarios.size(), 1u);
+  std::vector<std::string> active;
+  for (const ScenarioChannel& c : tg.scenarios[0].channels) active.push_back(tg.channels[c.channel].name);
+  std::sort(active.begin(), active.end());
+  EXPECT_EQ(active, (std::vector<std::string>{"control.planner.goal->planner.goal", "motor.tacho->control.motor.tacho",
+                                              "motor.tacho->logger.tacho", "planner.cmd->motor.cmd"}));
+  EXPECT_TRUE(analyseTaskGraph(tg).scenarios[0].sound());
 }
 
 // One mode running drive: control -> planner (5 ms) -> 2x motor (1 ms) -> control (1 ms), a single
