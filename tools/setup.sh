@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # One command for everything on a fresh Debian 12 machine: installs the Debian packages semo needs
 # (only those missing), builds, and then
-#   run       runs semo-verify on the paper's scouting mission
+#   run       runs semo-verify on the paper's scouting mission (check, then the task graphs)
 #   test      also runs the whole test suite
 #   sanitize  builds a second time with AddressSanitizer + UndefinedBehaviorSanitizer and runs the tests
 #   fuzz      builds the libFuzzer targets with clang and fuzzes each for FUZZ_SECONDS (default 300)
@@ -41,6 +41,9 @@ case "$mode" in
     # budget and proves the safety properties with Z3 (BMC, k-induction, IC3). Its LTL properties
     # stay unchecked, so the result is partial (exit 3) and says so.
     ./build/tools/semo-verify check "${scouting[@]}" --engine auto || [ $? -eq 3 ]
+    # Then each robot's dataflow task graph: every scenario consistent and deadlock free, with its
+    # schedule, period and buffer bounds proven (Z3).
+    ./build/tools/semo-verify sdf "${scouting[@]}"
     ;;
   test)
     build build -DCMAKE_BUILD_TYPE=Release -DSEMO_BUILD_TESTS=ON
