@@ -12,18 +12,12 @@
 #include "semo/sdf/cycle_ratio.hpp"
 #include "semo/sdf/sdf3_xml.hpp"
 
+#include "sdf_test_support.hpp"
+
 namespace semo::sdf {
 namespace {
 
-Graph load(const std::string& path) {
-  SourceManager sources;
-  DiagnosticEngine diags(sources);
-  std::string error;
-  FileId file = sources.load(SEMO_SOURCE_DIR "/specs/benchmarks/" + path, error);
-  std::optional<Graph> g = readSdf3(sources, file, diags);
-  EXPECT_TRUE(g.has_value()) << path;
-  return g ? *g : Graph{};
-}
+using test::benchmarkGraph;
 
 ActorId actorNamed(const Graph& g, const std::string& name) {
   for (ActorId a = 0; a < g.actors.size(); ++a) {
@@ -44,12 +38,12 @@ std::size_t channelNamed(const Graph& g, const std::string& name) {
 // The actors the automorphisms reach from `a` (its orbit under the group they generate).
 std::set<ActorId> orbit(const std::vector<Automorphism>& generators, ActorId a) {
   std::set<ActorId> out{a};
-  std::vector<ActorId> todo{a};
-  while (!todo.empty()) {
-    ActorId x = todo.back();
-    todo.pop_back();
+  std::vector<ActorId> pending{a};
+  while (!pending.empty()) {
+    ActorId x = pending.back();
+    pending.pop_back();
     for (const Automorphism& s : generators) {
-      if (out.insert(s.actor[x]).second) todo.push_back(s.actor[x]);
+      if (out.insert(s.actor[x]).second) pending.push_back(s.actor[x]);
     }
   }
   return out;
@@ -58,7 +52,7 @@ std::set<ActorId> orbit(const std::vector<Automorphism>& generators, ActorId a) 
 TEST(SdfAutomorphisms, TheMp3DecodersGranuleBranchesSwap) {
   // The stereo stage joins the branches, and nothing ties its inputs from branch 0 to its outputs
   // to branch 0 (ports are not part of the graph): the halves before and after it swap on their own.
-  Graph g = load("sdf3/mp3decoder_granule_parallelism.xml");
+  Graph g = benchmarkGraph("sdf3/mp3decoder_granule_parallelism.xml");
   std::vector<Automorphism> found = findAutomorphisms(g);
   ASSERT_EQ(found.size(), 2u);
   const Automorphism& before = found[0];
@@ -85,7 +79,7 @@ TEST(SdfAutomorphisms, TheMp3DecodersGranuleBranchesSwap) {
 TEST(SdfAutomorphisms, NoneWhereTheBranchesDiffer) {
   // One execution time or one token changed after the stereo stage: its halves no longer swap
   // (the halves before it still do).
-  Graph base = load("sdf3/mp3decoder_granule_parallelism.xml");
+  Graph base = benchmarkGraph("sdf3/mp3decoder_granule_parallelism.xml");
   Graph slower = base;
   slower.actors[actorNamed(slower, "IMDCT1")].executionTime += 1;
   std::vector<Automorphism> found = findAutomorphisms(slower);
@@ -107,18 +101,18 @@ TEST(SdfAutomorphisms, NoneWhereTheBranchesDiffer) {
 }
 
 TEST(SdfAutomorphisms, ManyAlikeBranchesFormOneOrbit) {
-  Graph g = load("generated/mp3family_b8_g16.xml");
+  Graph g = benchmarkGraph("generated/mp3family_b8_g16.xml");
   std::vector<Automorphism> found = findAutomorphisms(g);
   EXPECT_EQ(orbit(found, actorNamed(g, "req0")).size(), 8u);
   EXPECT_EQ(orbit(found, actorNamed(g, "IMDCT3")).size(), 8u);
   EXPECT_EQ(orbit(found, actorNamed(g, "stereo")).size(), 1u);
-  Graph skewed = load("generated/mp3family_b8_g8_skew10.xml");
+  Graph skewed = benchmarkGraph("generated/mp3family_b8_g8_skew10.xml");
   EXPECT_TRUE(findAutomorphisms(skewed).empty());
 }
 
 TEST(SdfAutomorphisms, ADistributionAndItsImageHaveOnePeriod) {
   // What the front relies on to learn a clause's images: the period is invariant.
-  Graph g = load("generated/mp3family_b4_g16.xml");
+  Graph g = benchmarkGraph("generated/mp3family_b4_g16.xml");
   RepetitionVector q = repetitionVector(g);
   HsdfExpansion expansion(g, q.firings);
   std::vector<Automorphism> found = findAutomorphisms(g);
@@ -140,7 +134,7 @@ TEST(SdfAutomorphisms, ADistributionAndItsImageHaveOnePeriod) {
 }
 
 std::vector<std::pair<std::int64_t, Period>> frontOf(const std::string& path, std::size_t& points) {
-  Graph g = load(path);
+  Graph g = benchmarkGraph(path);
   RepetitionVector q = repetitionVector(g);
   ParetoFront f = bufferParetoFront(g, q.firings, 100'000);
   EXPECT_TRUE(f.error.empty()) << f.error;

@@ -14,8 +14,12 @@
 #include "semo/sdf/sdf3_xml.hpp"
 #include "semo/sdf/throughput.hpp"
 
+#include "sdf_test_support.hpp"
+
 namespace semo::sdf {
 namespace {
+
+using test::benchmarkGraph;
 
 __extension__ typedef __int128 Wide;
 
@@ -180,16 +184,6 @@ TEST(SdfBufferFront, EqualsExhaustiveEnumerationOnSymmetricGraphs) {
     if (agreesWithEnumeration(g, "symmetric sample " + std::to_string(sample), points)) ++compared;
   }
   EXPECT_GE(compared, 8);
-}
-
-Graph benchmarkGraph(const std::string& path) {
-  SourceManager sources;
-  DiagnosticEngine diags(sources);
-  std::string error;
-  FileId file = sources.load(SEMO_SOURCE_DIR "/specs/benchmarks/" + path, error);
-  std::optional<Graph> g = readSdf3(sources, file, diags);
-  EXPECT_TRUE(g.has_value()) << path;
-  return g ? *g : Graph{};
 }
 
 TEST(SdfBufferFront, Mp3Decoder) {

@@ -7,8 +7,12 @@
 #include "semo/sdf/consistency.hpp"
 #include "semo/sdf/sdf3_xml.hpp"
 
+#include "sdf_test_support.hpp"
+
 namespace semo::sdf {
 namespace {
+
+using test::sdf3Benchmark;
 
 // Actors named by the letters of `names`; each channel "a>b p:c t" (production, consumption,
 // initial tokens).
@@ -135,17 +139,6 @@ TEST(SdfConsistency, CountsPast64BitsAreAnErrorNotAWrapAround) {
   EXPECT_NE(q.error.find("64 bits"), std::string::npos);
 }
 
-Graph benchmark(const std::string& name) {
-  SourceManager sources;
-  DiagnosticEngine diags(sources);
-  std::string error;
-  FileId file = sources.load(SEMO_SOURCE_DIR "/specs/benchmarks/sdf3/" + name + ".xml", error);
-  EXPECT_TRUE(error.empty()) << error;
-  std::optional<Graph> g = readSdf3(sources, file, diags);
-  for (const Diagnostic& d : diags.diagnostics()) ADD_FAILURE() << diags.format(d);
-  return g ? *g : Graph{};
-}
-
 std::map<std::string, std::int64_t> byName(const Graph& g, const std::vector<std::int64_t>& q) {
   std::map<std::string, std::int64_t> out;
   for (std::size_t a = 0; a < g.actors.size(); ++a) out[g.actors[a].name] = q[a];
@@ -165,14 +158,14 @@ TEST(SdfConsistency, Sdf3BenchmarksHaveSdf3sRepetitionVectors) {
   };
   for (const auto& [name, vector] : expected) {
     SCOPED_TRACE(name);
-    Graph g = benchmark(name);
+    Graph g = sdf3Benchmark(name);
     RepetitionVector q = repetitionVector(g);
     ASSERT_TRUE(q.consistent()) << q.error;
     EXPECT_EQ(byName(g, q.firings), vector);
     EXPECT_TRUE(runIteration(g, q.firings).deadlockFree);
   }
   // The mp3 decoder: huffman once, every other actor twice.
-  Graph mp3 = benchmark("mp3decoder_granule_parallelism");
+  Graph mp3 = sdf3Benchmark("mp3decoder_granule_parallelism");
   RepetitionVector q = repetitionVector(mp3);
   ASSERT_TRUE(q.consistent()) << q.error;
   ASSERT_EQ(mp3.actors.size(), 14u);
@@ -181,7 +174,7 @@ TEST(SdfConsistency, Sdf3BenchmarksHaveSdf3sRepetitionVectors) {
 }
 
 TEST(SdfConsistency, Sdf3ExecutionTimesAreRead) {
-  Graph g = benchmark("samplerate");
+  Graph g = sdf3Benchmark("samplerate");
   ASSERT_EQ(g.actors.size(), 6u);
   EXPECT_EQ(g.actors[0].name, "a");
   EXPECT_EQ(g.actors[0].executionTime, 5);

@@ -11,18 +11,12 @@
 #include "semo/sdf/sdf3_xml.hpp"
 #include "semo/sdf/throughput.hpp"
 
+#include "sdf_test_support.hpp"
+
 namespace semo::sdf {
 namespace {
 
-Graph benchmarkGraph(const std::string& name) {
-  SourceManager sources;
-  DiagnosticEngine diags(sources);
-  std::string error;
-  FileId file = sources.load(SEMO_SOURCE_DIR "/specs/benchmarks/sdf3/" + name + ".xml", error);
-  std::optional<Graph> g = readSdf3(sources, file, diags);
-  EXPECT_TRUE(g.has_value()) << name;
-  return g ? *g : Graph{};
-}
+using test::sdf3Benchmark;
 
 CycleRatioResult ratioOf(const Graph& g, const std::vector<std::optional<std::int64_t>>& capacities = {}) {
   RepetitionVector q = repetitionVector(g);
@@ -90,7 +84,7 @@ TEST(SdfCycleRatio, MultirateSpaceEdges) {
 TEST(SdfCycleRatio, AgreesWithTheStateSpaceOnRandomDistributions) {
   std::mt19937_64 random(20261123);
   for (const char* name : {"samplerate", "modem", "satellite", "h263decoder", "mp3decoder_granule_parallelism"}) {
-    Graph g = benchmarkGraph(name);
+    Graph g = sdf3Benchmark(name);
     RepetitionVector q = repetitionVector(g);
     HsdfExpansion expansion(g, q.firings);
     ASSERT_TRUE(expansion.error().empty());

@@ -8,18 +8,12 @@
 #include "semo/sdf/sdf3_xml.hpp"
 #include "semo/sdf/throughput.hpp"
 
+#include "sdf_test_support.hpp"
+
 namespace semo::sdf {
 namespace {
 
-Graph benchmark(const std::string& name) {
-  SourceManager sources;
-  DiagnosticEngine diags(sources);
-  std::string error;
-  FileId file = sources.load(SEMO_SOURCE_DIR "/specs/benchmarks/sdf3/" + name + ".xml", error);
-  std::optional<Graph> g = readSdf3(sources, file, diags);
-  EXPECT_TRUE(g.has_value()) << name;
-  return g ? *g : Graph{};
-}
+using test::sdf3Benchmark;
 
 Period periodOf(const Graph& g, const ThroughputOptions& options = {}) {
   RepetitionVector q = repetitionVector(g);
@@ -75,17 +69,17 @@ TEST(SdfThroughput, ABoundedChannelSlowsTheProducer) {
 }
 
 TEST(SdfThroughput, Sdf3BenchmarkPeriods) {
-  EXPECT_EQ(periodOf(benchmark("h263decoder")), (Period{332046, 1}));
-  EXPECT_EQ(periodOf(benchmark("modem")), (Period{16, 1}));
-  EXPECT_EQ(periodOf(benchmark("samplerate")), (Period{960, 1}));
-  EXPECT_EQ(periodOf(benchmark("satellite")), (Period{1056, 1}));
-  EXPECT_EQ(periodOf(benchmark("mp3decoder_granule_parallelism")), (Period{278650, 1}));
+  EXPECT_EQ(periodOf(sdf3Benchmark("h263decoder")), (Period{332046, 1}));
+  EXPECT_EQ(periodOf(sdf3Benchmark("modem")), (Period{16, 1}));
+  EXPECT_EQ(periodOf(sdf3Benchmark("samplerate")), (Period{960, 1}));
+  EXPECT_EQ(periodOf(sdf3Benchmark("satellite")), (Period{1056, 1}));
+  EXPECT_EQ(periodOf(sdf3Benchmark("mp3decoder_granule_parallelism")), (Period{278650, 1}));
 }
 
 TEST(SdfThroughput, SamplerateWithSdf3sBufferDistributions) {
   // SDF3: the smallest buffers with throughput > 0 are 1,4,8,14,5 (period 1088); 2,4,8,14,6 reach
   // the maximal throughput (period 960). ch1..ch5 are the graph's first five channels.
-  Graph g = benchmark("samplerate");
+  Graph g = sdf3Benchmark("samplerate");
   ThroughputOptions smallest;
   smallest.capacities.assign(g.channels.size(), std::nullopt);
   const std::int64_t small[] = {1, 4, 8, 14, 5}, fast[] = {2, 4, 8, 14, 6};
@@ -108,7 +102,7 @@ namespace {
 
 // Each Pareto point as (total, period) — a period of 0 for a deadlocked distribution.
 std::vector<std::pair<std::int64_t, std::int64_t>> front(const std::string& name) {
-  Graph g = benchmark(name);
+  Graph g = sdf3Benchmark(name);
   RepetitionVector q = repetitionVector(g);
   ParetoFront f = bufferParetoFront(g, q.firings, 100'000);
   EXPECT_TRUE(f.error.empty()) << f.error;
