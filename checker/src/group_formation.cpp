@@ -18,7 +18,7 @@ std::int64_t largestMinimum(const model::MissionModel& m, const std::vector<mode
   if (depth > 32) return most;
   for (const model::Stmt& s : body) {
     if (s.kind == model::Stmt::Kind::CallGroupService) {
-      if (const strategy::Service* service = m.strategy.service(s.service)) most = std::max(most, service->minRobots);
+      if (s.strategyService != model::kNone) most = std::max(most, m.serviceOf(s).minRobots);
     }
     if (s.kind == model::Stmt::Kind::CallComposite && s.composite < m.services.size()) {
       most = std::max(most, largestMinimum(m, m.services[s.composite].body, depth + 1));

@@ -434,7 +434,7 @@ class Writer {
                << std::string_view(buffer, static_cast<std::size_t>(end - buffer)) << ")";
         }
         if (r.weaklyFair) out_ << ", fair";
-        if (!r.origin.empty()) out_ << ", at " << commentText(r.origin);
+        if (!r.origin.empty()) out_ << ", at " << commentText(r.origin.text());
         if (!r.label.empty()) out_ << ": " << commentText(r.label);
         out_ << " */\n";
         option("d_step", guard(r.guard), assignments(r.branches[b]));

@@ -31,7 +31,7 @@ std::string traceToText(const ir::Model& m, const Trace& t) {
     out << "  " << (i + 1) << ". [" << robotName(m, r) << "] " << (r.label.empty() ? r.name : r.label);
     if (r.branches.size() > 1) out << " (outcome " << (s.branch + 1) << ")";
     if (r.kind != ir::RuleKind::Step) out << "  {" << ir::kindName(r.kind) << "}";
-    if (!r.origin.empty()) out << "  at " << r.origin;
+    if (!r.origin.empty()) out << "  at " << r.origin.text();
     out << "\n";
     for (const Change& c : s.changes) {
       const ir::Variable& v = m.variables.at(c.var);
@@ -84,7 +84,7 @@ std::string traceToJson(const ir::Model& m, const Trace& t) {
                          {"fromText", valueText(v, c.before)}, {"toText", valueText(v, c.after)}});
     }
     json step = {{"step", i + 1}, {"rule", r.name}, {"kind", ir::kindName(r.kind)}, {"label", r.label},
-                 {"origin", r.origin}, {"branch", s.branch}, {"changes", changes}};
+                 {"origin", r.origin.text()}, {"branch", s.branch}, {"changes", changes}};
     step["robot"] = r.robot == ir::kNoRobot ? json(nullptr) : json(m.robots.at(static_cast<std::size_t>(r.robot)));
     steps.push_back(step);
   }

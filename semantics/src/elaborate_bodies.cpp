@@ -211,6 +211,7 @@ void Elaborator::lowerCall(const ast::Stmt& s, model::Stmt& out, Index team) {
   if (const strategy::Service* service = m_.strategy.service(s.name.text)) {
     out.kind = service->kind == strategy::Service::Kind::Group ? model::Stmt::Kind::CallGroupService
                                                                : model::Stmt::Kind::CallPrimitive;
+    out.strategyService = static_cast<Index>(service - m_.strategy.services.data());
     if (service->paramsDeclared && service->params.size() != s.args.size()) {
       Diagnostic& d = diags_.error(s.name.range, "service '" + s.name.text + "' takes " + std::to_string(service->params.size()) +
                                                      " argument" + (service->params.size() == 1 ? "" : "s") + " (" +

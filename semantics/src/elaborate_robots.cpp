@@ -122,8 +122,8 @@ void Elaborator::walkCond(const model::Cond& c, const RobotSet& robots) {
 }
 
 void Elaborator::requireImplementation(const model::Stmt& call, const RobotSet& robots) {
-  const strategy::Service* service = m_.strategy.service(call.service);
-  if (service == nullptr) return;
+  if (call.strategyService == model::kNone) return;
+  const strategy::Service* service = &m_.serviceOf(call);
   std::vector<std::string> missing;
   std::size_t count = 0;
   for (Index r = 0; r < robots.size(); ++r) {

@@ -15,6 +15,31 @@ Expr fold(std::vector<Expr> parts, Op op, std::int32_t empty) {
 }
 }  // namespace
 
+std::string Origin::text() const {
+  if (line == 0) return file;
+  return file + ":" + std::to_string(line) + ":" + std::to_string(column);
+}
+
+Origin Origin::parse(const std::string& text, std::string construct) {
+  Origin o;
+  o.construct = std::move(construct);
+  auto number = [](const std::string& s, std::uint32_t& out) {
+    if (s.empty() || s.size() > 9 || s.find_first_not_of("0123456789") != std::string::npos) return false;
+    out = static_cast<std::uint32_t>(std::stoul(s));
+    return true;
+  };
+  std::size_t c2 = text.rfind(':');
+  std::size_t c1 = c2 == std::string::npos || c2 == 0 ? std::string::npos : text.rfind(':', c2 - 1);
+  if (c1 != std::string::npos && number(text.substr(c1 + 1, c2 - c1 - 1), o.line) && number(text.substr(c2 + 1), o.column) &&
+      o.line > 0) {
+    o.file = text.substr(0, c1);
+    return o;
+  }
+  o.line = o.column = 0;
+  o.file = text;
+  return o;
+}
+
 Expr conjunction(std::vector<Expr> parts) { return fold(std::move(parts), Op::And, 1); }
 Expr disjunction(std::vector<Expr> parts) { return fold(std::move(parts), Op::Or, 0); }
 

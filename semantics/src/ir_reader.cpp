@@ -338,7 +338,8 @@ class Reader {
     if (!ruleNames_.insert(r.name).second) fail(nameToken, "rule '" + r.name + "' is declared twice");
     attributes([&](const Token& key, const std::string& value) {
       if (key.text == "robot") return r.robot = robot(key, value), true;
-      if (key.text == "origin") return r.origin = value, true;
+      if (key.text == "origin") return r.origin = Origin::parse(value, r.origin.construct), true;
+      if (key.text == "construct") return r.origin.construct = value, true;
       if (key.text == "label") return r.label = value, true;
       if (key.text == "fair") return r.weaklyFair = true, true;
       if (key.text == "strongly_fair") return r.weaklyFair = r.stronglyFair = true, true;

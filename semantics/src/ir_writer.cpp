@@ -205,7 +205,8 @@ std::string toText(const Model& m) {
     out << "rule " << (isPlainName(r.name, true) ? r.name : quoted(r.name));
     if (r.robot != kNoRobot) out << " @robot(" << m.robots.at(static_cast<std::size_t>(r.robot)) << ')';
     if (r.kind != RuleKind::Step) out << " @kind(" << kindName(r.kind) << ')';
-    if (!r.origin.empty()) out << " @origin(" << quoted(r.origin) << ')';
+    if (!r.origin.empty()) out << " @origin(" << quoted(r.origin.text()) << ')';
+    if (!r.origin.construct.empty()) out << " @construct(" << quoted(r.origin.construct) << ')';
     if (!r.label.empty()) out << " @label(" << quoted(r.label) << ')';
     if (r.stronglyFair) out << " @strongly_fair";
     else if (r.weaklyFair) out << " @fair";

@@ -9,9 +9,39 @@
 namespace semo::detail {
 
 
-std::string Translator::origin(const SourceRange& r) const {
-  if (!r.begin.valid() || r.begin.file >= sources_.fileCount()) return "";
-  return sources_.path(r.begin.file) + ":" + std::to_string(r.begin.line) + ":" + std::to_string(r.begin.column);
+ir::Origin Translator::origin(const SourceRange& r, std::string construct) const {
+  ir::Origin o;
+  o.construct = std::move(construct);
+  if (!r.begin.valid() || r.begin.file >= sources_.fileCount()) return o;
+  o.file = sources_.path(r.begin.file);
+  o.line = r.begin.line;
+  o.column = r.begin.column;
+  return o;
+}
+
+// The mission construct a rule starting at `in` comes from, for its origin.
+std::string Translator::constructOf(const Instr& in) {
+  using K = model::Stmt::Kind;
+  switch (in.kind) {
+    case Instr::Kind::Done: return "service end";
+    case Instr::Kind::Jump: return in.stmt != nullptr ? "loop" : "repeat";
+    case Instr::Kind::Branch: return "if";
+    case Instr::Kind::RepeatBranch: return "repeat";
+    case Instr::Kind::Throw: return "throw";
+    case Instr::Kind::Publish: return "publish";
+    case Instr::Kind::Send: return "send";
+    case Instr::Kind::Receive: return "receive";
+    case Instr::Kind::Groups: return "group block";
+    case Instr::Kind::GroupService: return "group service call";
+    case Instr::Kind::BlockExit: return "group block end";
+    case Instr::Kind::Local: break;
+  }
+  if (in.stmt == nullptr) return "statement";
+  switch (in.stmt->kind) {
+    case K::Wait: return "wait";
+    case K::Subscribe: return "subscribe";
+    default: return "call";
+  }
 }
 
 std::int32_t Translator::crashBudget(Index team) const {
@@ -53,7 +83,7 @@ void Translator::assumptions() {
 }
 
 ir::VarId Translator::addVar(std::string name, std::int32_t min, std::int32_t max, std::int32_t init, std::int32_t robot,
-                             std::vector<std::string> valueNames) {
+                             VariableRole role, std::vector<std::string> valueNames) {
   ir::Variable v;
   v.name = std::move(name);
   v.min = min;
@@ -63,6 +93,7 @@ ir::VarId Translator::addVar(std::string name, std::int32_t min, std::int32_t ma
   v.robot = robot;
   v.valueNames = std::move(valueNames);
   out_.variables.push_back(std::move(v));
+  lowering_.variables.push_back(std::move(role));
   return static_cast<ir::VarId>(out_.variables.size() - 1);
 }
 
@@ -106,9 +137,9 @@ void Translator::variables() {
   vars_.resize(m_.robots.size());
   for (Index t = 0; t < m_.teams.size(); ++t) {
     const model::Team& team = m_.teams[t];
-    for (const std::string& plan : team.plans) programs_[t].push_back(detail::buildProgram(m_, t, plan));
+    for (const std::string& plan : team.plans) programs_[t].push_back(lowering::buildProgram(m_, t, plan));
     if (crashBudget(t) > 0) {
-      crashed_[t] = addVar(team.name + ".crashed", 0, crashBudget(t), 0, ir::kNoRobot);
+      crashed_[t] = addVar(team.name + ".crashed", 0, crashBudget(t), 0, ir::kNoRobot, {VariableRole::Kind::Crashed, model::kNone, t});
       out_.variables.back().isBool = false;  // a count, even when the budget is 1
     }
     std::vector<std::string> modeNames;
@@ -117,11 +148,12 @@ void Translator::variables() {
       auto robot = static_cast<std::int32_t>(r);
       const std::string& name = m_.robots[r].name;
       RobotVars& v = vars_[r];
-      if (crashBudget(t) > 0) v.alive = addVar(name + ".alive", 0, 1, 1, robot);
+      if (crashBudget(t) > 0) v.alive = addVar(name + ".alive", 0, 1, 1, robot, {VariableRole::Kind::Alive, r, t});
       Index initial = team.initialMode;
       if (team.modes.size() > 1 && initial != model::kNone) {
         auto initialIndex = static_cast<std::int32_t>(std::find(team.modes.begin(), team.modes.end(), initial) - team.modes.begin());
-        v.mode = addVar(name + ".mode", 0, static_cast<std::int32_t>(team.modes.size()) - 1, initialIndex, robot, modeNames);
+        v.mode = addVar(name + ".mode", 0, static_cast<std::int32_t>(team.modes.size()) - 1, initialIndex, robot,
+                        {VariableRole::Kind::Mode, r, t}, modeNames);
       }
       for (std::size_t p = 0; p < team.plans.size(); ++p) {
         const PlanProgram& prog = programs_[t][p];
@@ -154,25 +186,31 @@ void Translator::variables() {
           labels.push_back(std::move(label));
         }
         v.pc.push_back(addVar(name + ".pc." + team.plans[p], 0, static_cast<std::int32_t>(prog.code.size()) - 1,
-                              static_cast<std::int32_t>(entry), robot, std::move(labels)));
+                              static_cast<std::int32_t>(entry), robot, {VariableRole::Kind::Pc, r, t, static_cast<Index>(p)},
+                              std::move(labels)));
       }
       for (std::size_t p = 0; p < team.plans.size(); ++p) {
         const PlanProgram& prog = programs_[t][p];
         for (std::size_t i = 0; i < prog.code.size(); ++i) {
           if (prog.code[i].kind != Instr::Kind::GroupService) continue;
           const std::string& service = prog.code[i].stmt->service;
-          if (r == team.robots.front()) sites_[{t, service}].push_back({p, i});
-          const strategy::Service* sv = m_.strategy.service(service);
+          if (r == team.robots.front()) {
+            ServiceSites& sites = sites_[{t, service}];
+            sites.service = prog.code[i].stmt->strategyService;
+            sites.at.push_back({p, i});
+          }
+          const strategy::Service* sv = &m_.serviceOf(*prog.code[i].stmt);
           for (const strategy::Knowledge& k : sv->knowledge) {
             if (v.knows.count(k.name) != 0) continue;
-            v.knows[k.name] = addVar(name + ".knows." + k.name, 0, static_cast<std::int32_t>(k.values.size()), 0, robot);
+            v.knows[k.name] = addVar(name + ".knows." + k.name, 0, static_cast<std::int32_t>(k.values.size()), 0, robot,
+                                     {VariableRole::Kind::Knows, r, t, model::kNone, k.name});
             out_.variables.back().isBool = false;
           }
         }
       }
       for (Index e = 0; e < team.events.size(); ++e) {
         if (!team.events[e].thrownAt.empty() && !team.events[e].caughtAt.empty() && team.robots.size() > 1) {
-          v.event[e] = addVar(name + ".ev." + team.events[e].name, 0, 1, 0, robot);
+          v.event[e] = addVar(name + ".ev." + team.events[e].name, 0, 1, 0, robot, {VariableRole::Kind::Event, r, t, e});
         }
       }
     }
@@ -181,7 +219,8 @@ void Translator::variables() {
     const model::Topic& topic = m_.topics[tp];
     std::string topicName = m_.teams[topic.owner].name + "." + topic.var;
     if (topic.reliable) {
-      channel_[tp] = addVar("ch." + topicName, 0, static_cast<std::int32_t>(topic.buffer) + 1, 0, ir::kNoRobot);
+      channel_[tp] = addVar("ch." + topicName, 0, static_cast<std::int32_t>(topic.buffer) + 1, 0, ir::kNoRobot,
+                            {VariableRole::Kind::Channel, model::kNone, topic.owner, tp});
       continue;
     }
     std::vector<std::string> names{"none"};
@@ -192,8 +231,8 @@ void Translator::variables() {
       for (Index r : m_.teams[t].robots) {
         auto robot = static_cast<std::int32_t>(r);
         auto top = static_cast<std::int32_t>(names.size()) - 1;
-        vars_[r].view[tp] = addVar(m_.robots[r].name + ".view." + topicName, 0, top, 0, robot, names);
-        vars_[r].msg[tp] = addVar(m_.robots[r].name + ".msg." + topicName, 0, top, 0, robot, names);
+        vars_[r].view[tp] = addVar(m_.robots[r].name + ".view." + topicName, 0, top, 0, robot, {VariableRole::Kind::View, r, t, tp}, names);
+        vars_[r].msg[tp] = addVar(m_.robots[r].name + ".msg." + topicName, 0, top, 0, robot, {VariableRole::Kind::Message, r, t, tp}, names);
       }
     }
   }
@@ -208,13 +247,14 @@ void Translator::variables() {
     for (Index c : candidates(b)) {
       auto robot = static_cast<std::int32_t>(c);
       const std::string& name = m_.robots[c].name;
-      vars_[c].leads[b] = addVar(name + ".leads." + tag, 0, 1, 0, robot);
+      vars_[c].leads[b] = addVar(name + ".leads." + tag, 0, 1, 0, robot, {VariableRole::Kind::Leads, c, team, b});
       if (detect) {
-        vars_[c].silence[b] = addVar(name + ".silence." + tag, 0, timeoutPeriods(b), 0, robot);
+        vars_[c].silence[b] = addVar(name + ".silence." + tag, 0, timeoutPeriods(b), 0, robot, {VariableRole::Kind::Silence, c, team, b});
         out_.variables.back().isBool = false;
       }
       if (detect && loseHeartbeats_) {
-        vars_[c].lossRun[b] = addVar(name + ".lost." + tag, 0, static_cast<std::int32_t>(m_.assumptions.lossBurst), 0, robot);
+        vars_[c].lossRun[b] = addVar(name + ".lost." + tag, 0, static_cast<std::int32_t>(m_.assumptions.lossBurst), 0, robot,
+                                     {VariableRole::Kind::LostHeartbeats, c, team, b});
         out_.variables.back().isBool = false;
       }
     }
@@ -329,9 +369,13 @@ void Translator::blockExitRules(Index robot, std::size_t planIndex, std::size_t 
                                    Expr::binary(Op::Lt, pc, Expr::constant(static_cast<std::int32_t>(range->last)))});
     path.guard.push_back(Expr::binary(Op::Or, lnot(alive(q)), lnot(std::move(inside))));
   }
+  lowering::Guard clear(lowering::Guard::Kind::BlockClear, range->block, planIndex, at);
+  for (std::size_t i = range->first + 1; i < range->last; ++i) clear.pcs.push_back(i);
+  path.guards.push_back(std::move(clear));
   if (auto leads = vars_[robot].leads.find(range->block); leads != vars_[robot].leads.end()) {
     path.updates.push_back({leads->second, Expr::constant(0)});  // a leader's part ends with the block
   }
+  path.effects.push_back({lowering::Effect::Kind::LeaveBlock, range->block});
   path.words.push_back("leaves the group block");
   walk(robot, planIndex, prog.code[at].next, std::move(path), at, 1);
 }
@@ -342,23 +386,28 @@ void Translator::blockExitRules(Index robot, std::size_t planIndex, std::size_t 
 // Synchronised start (the paper's group semantics): a robot starts working in a group service
 // only when no other live robot running the same service is still on its way to the block or
 // forming it; those already in an arm, or elsewhere, do not hold it up.
-Expr Translator::groupStarted(Index robot, std::size_t planIndex, std::size_t at) const {
+Expr Translator::groupStarted(Index robot, std::size_t planIndex, std::size_t at, std::vector<std::size_t>* pcs) const {
   const PlanProgram& prog = programs_[m_.robots[robot].team][planIndex];
   const Index service = prog.code[at].service;
   std::vector<Expr> ready;
   for (const BlockRange& range : prog.blocks) {
     if (range.armFirst.empty() || at < range.armFirst.front() || at >= range.last) continue;
+    std::vector<std::size_t> before;  // in the service, at the block's formation or before it
+    for (std::size_t i = 1; i < prog.code.size(); ++i) {
+      if (prog.code[i].service == service && prog.code[i].controlPoint && (i < range.first || i >= range.last)) before.push_back(i);
+    }
+    if (pcs != nullptr) pcs->insert(pcs->end(), before.begin(), before.end());
     for (Index q : m_.teams[m_.robots[robot].team].robots) {
       if (q == robot || !vars_[q].pc[planIndex]) continue;
       Expr pc = Expr::var(*vars_[q].pc[planIndex]);
-      std::vector<Expr> notYet;  // in the service, at the block's formation or before it
-      for (std::size_t i = 1; i < prog.code.size(); ++i) {
-        if (prog.code[i].service == service && prog.code[i].controlPoint && (i < range.first || i >= range.last)) {
-          notYet.push_back(eq(pc, static_cast<std::int32_t>(i)));
-        }
-      }
+      std::vector<Expr> notYet;
+      for (std::size_t i : before) notYet.push_back(eq(pc, static_cast<std::int32_t>(i)));
       if (!notYet.empty()) ready.push_back(Expr::binary(Op::Or, lnot(alive(q)), lnot(ir::disjunction(std::move(notYet)))));
     }
+  }
+  if (pcs != nullptr) {
+    std::sort(pcs->begin(), pcs->end());
+    pcs->erase(std::unique(pcs->begin(), pcs->end()), pcs->end());
   }
   return ir::conjunction(std::move(ready));
 }
@@ -366,7 +415,7 @@ Expr Translator::groupStarted(Index robot, std::size_t planIndex, std::size_t at
 void Translator::groupServiceRules(Index robot, std::size_t planIndex, std::size_t at) {
   const PlanProgram& prog = programs_[m_.robots[robot].team][planIndex];
   const Instr& in = prog.code[at];
-  const strategy::Service& sv = *m_.strategy.service(in.stmt->service);
+  const strategy::Service& sv = m_.serviceOf(*in.stmt);
   const RobotVars& v = vars_[robot];
   Expr here = ir::conjunction({alive(robot), eq(Expr::var(*v.pc[planIndex]), static_cast<std::int32_t>(at)),
                                groupStarted(robot, planIndex, at)});
@@ -377,15 +426,28 @@ void Translator::groupServiceRules(Index robot, std::size_t planIndex, std::size
     discover.robot = static_cast<std::int32_t>(robot);
     discover.kind = ir::RuleKind::Environment;
     discover.label = "finds a new " + k.name + " fact while working in " + sv.name;
-    discover.origin = origin(in.stmt->at);
+    discover.origin = origin(in.stmt->at, "group service call");
     discover.guard = ir::conjunction({here, Expr::binary(Op::Lt, Expr::var(knows), Expr::constant(static_cast<std::int32_t>(k.values.size())))});
     discover.branches.push_back({1.0, {{knows, Expr::binary(Op::Add, Expr::var(knows), Expr::constant(1))}}});
-    addRule(std::move(discover));
+    RuleMeaning meaning;
+    meaning.kind = RuleMeaning::Kind::Discover;
+    meaning.robot = robot;
+    meaning.plan = planIndex;
+    meaning.from = meaning.to = at;
+    meaning.service = sv.name;
+    meaning.knowledge = k.name;
+    addRule(std::move(discover), std::move(meaning));
   }
   if (!sv.goal) return;
   Path path;
-  path.guard.push_back(groupStarted(robot, planIndex, at));
+  lowering::Guard started(lowering::Guard::Kind::GroupStarted, in.service, planIndex, at);
+  path.guard.push_back(groupStarted(robot, planIndex, at, &started.pcs));
+  path.guards.push_back(std::move(started));
   path.guard.push_back(Expr::binary(Op::Ge, Expr::var(v.knows.at(sv.goal->knowledge)), Expr::constant(static_cast<std::int32_t>(sv.goal->count))));
+  lowering::Guard goal(lowering::Guard::Kind::Goal);
+  goal.knowledge = sv.goal->knowledge;
+  goal.count = sv.goal->count;
+  path.guards.push_back(std::move(goal));
   path.words.push_back("reaches the goal of " + sv.name);
   walk(robot, planIndex, in.next, std::move(path), at, 1);
 }
@@ -398,7 +460,7 @@ void Translator::finish(Index robot, std::size_t planIndex, std::size_t start, s
   const PlanProgram& prog = programs_[m_.robots[robot].team][planIndex];
   rule.name = m_.robots[robot].name + "." + prog.plan + "." + std::to_string(start) + "." + std::to_string(++rulesPerPoint_);
   const Instr& first = prog.code[start];
-  if (first.stmt != nullptr) rule.origin = origin(first.stmt->at);
+  rule.origin = origin(first.stmt != nullptr ? first.stmt->at : SourceRange{}, constructOf(first));
   std::vector<Expr> guard{alive(robot), eq(Expr::var(*v.pc[planIndex]), static_cast<std::int32_t>(start))};
   for (Expr& g : path.guard) guard.push_back(std::move(g));
   rule.guard = ir::conjunction(std::move(guard));
@@ -419,7 +481,17 @@ void Translator::finish(Index robot, std::size_t planIndex, std::size_t start, s
   for (const std::string& w : path.words) label += (label.empty() ? "" : ", ") + w;
   rule.label = label.empty() ? "continues " + m_.services[first.service].name : label;
   rule.weaklyFair = true;
-  addRule(std::move(rule));
+  RuleMeaning meaning;
+  meaning.kind = RuleMeaning::Kind::ProgramStep;
+  meaning.robot = robot;
+  meaning.plan = planIndex;
+  meaning.from = start;
+  meaning.to = target;
+  meaning.changesMode = path.changesMode;
+  meaning.actions = std::move(path.actions);
+  meaning.guards = std::move(path.guards);
+  meaning.effects = std::move(path.effects);
+  addRule(std::move(rule), std::move(meaning));
 }
 
 void Translator::walk(Index robot, std::size_t planIndex, std::size_t at, Path path, std::size_t start, int depth) {
@@ -433,11 +505,20 @@ void Translator::walk(Index robot, std::size_t planIndex, std::size_t at, Path p
     case Instr::Kind::Local:
     case Instr::Kind::Jump:
       if (!in.label.empty() && in.kind == Instr::Kind::Local) path.words.push_back(in.label);
+      if (in.kind == Instr::Kind::Local && in.stmt != nullptr && in.stmt->kind == model::Stmt::Kind::CallPrimitive) {
+        path.actions.push_back({lowering::Action::Kind::Call, in.stmt});
+      } else if (in.kind == Instr::Kind::Local && in.stmt != nullptr && in.stmt->kind == model::Stmt::Kind::Wait) {
+        path.actions.push_back({lowering::Action::Kind::Wait, in.stmt});
+      }
       return walk(robot, planIndex, in.next, std::move(path), start, depth + 1);
     case Instr::Kind::Branch:
     case Instr::Kind::RepeatBranch: {
       std::optional<Expr> c = condition(robot, *in.cond);
       Path yes = path, no = std::move(path);
+      bool repeat = in.kind == Instr::Kind::RepeatBranch;
+      auto kind = c ? lowering::Action::Kind::Test : lowering::Action::Kind::Sense;
+      yes.actions.push_back({kind, nullptr, in.cond, true, repeat});
+      no.actions.push_back({kind, nullptr, in.cond, false, repeat});
       if (c) {
         yes.guard.push_back(*c);
         no.guard.push_back(lnot(std::move(*c)));
@@ -445,7 +526,6 @@ void Translator::walk(Index robot, std::size_t planIndex, std::size_t at, Path p
         yes.words.push_back(in.kind == Instr::Kind::Branch ? "senses: condition holds" : "senses: repeat");
         no.words.push_back(in.kind == Instr::Kind::Branch ? "senses: condition fails" : "senses: stop repeating");
       }
-      bool repeat = in.kind == Instr::Kind::RepeatBranch;
       walk(robot, planIndex, repeat ? in.alt : in.next, std::move(yes), start, depth + 1);
       walk(robot, planIndex, repeat ? in.next : in.alt, std::move(no), start, depth + 1);
       return;
@@ -454,9 +534,10 @@ void Translator::walk(Index robot, std::size_t planIndex, std::size_t at, Path p
       const model::GroupBlock& block = m_.groupBlocks[in.block];
       if (block.isLeaderBlock) {
         std::size_t leaderArm = in.next, othersArm = in.next;
+        std::size_t leaderIndex = 0, othersIndex = 0;
         for (std::size_t a = 0; a < block.arms.size(); ++a) {
-          if (block.arms[a].kind == model::GroupArm::Kind::Leader) leaderArm = in.arms[a];
-          if (block.arms[a].kind == model::GroupArm::Kind::Others) othersArm = in.arms[a];
+          if (block.arms[a].kind == model::GroupArm::Kind::Leader) leaderArm = in.arms[a], leaderIndex = a;
+          if (block.arms[a].kind == model::GroupArm::Kind::Others) othersArm = in.arms[a], othersIndex = a;
         }
         // The group starts together (synchronised start): whoever forms it first runs the election
         // among the robots forming it with it, and they agree on its result, the best of them, when
@@ -477,13 +558,18 @@ void Translator::walk(Index robot, std::size_t planIndex, std::size_t at, Path p
             path.updates.push_back({silence->second, Expr::ite(noLeader(in.block), Expr::constant(0), Expr::var(silence->second))});
           }
         }
+        path.effects.push_back({lowering::Effect::Kind::Elect, in.block});
         if (vars_[robot].leads.count(in.block) != 0) {
           Path leading = path;
           leading.guard.push_back(electedIs(robot));
+          leading.guards.push_back(lowering::Guard(lowering::Guard::Kind::Elected, in.block, planIndex, at));
+          leading.effects.push_back({lowering::Effect::Kind::JoinArm, in.block, leaderIndex});
           leading.words.push_back("leads the group");
           finish(robot, planIndex, start, leaderArm, std::move(leading));
           path.guard.push_back(lnot(electedIs(robot)));
+          path.guards.push_back(lowering::Guard(lowering::Guard::Kind::NotElected, in.block, planIndex, at));
         }
+        path.effects.push_back({lowering::Effect::Kind::JoinArm, in.block, othersIndex});
         path.words.push_back("follows the leader");
         return finish(robot, planIndex, start, othersArm, std::move(path));
       }
@@ -495,6 +581,7 @@ void Translator::walk(Index robot, std::size_t planIndex, std::size_t at, Path p
         Path take = path;
         std::string what = arm.kind == model::GroupArm::Kind::Others ? "others" : "group (" + arm.names.front() + (arm.names.size() > 1 ? ", ..." : "") + ")";
         take.words.push_back("joins " + what);
+        take.effects.push_back({lowering::Effect::Kind::JoinArm, in.block, a});
         finish(robot, planIndex, start, in.arms[a], std::move(take));
       }
       if (!any) {
@@ -530,16 +617,20 @@ void Translator::effect(Index robot, std::size_t planIndex, const Instr& in, Pat
       }
       // The thrower's own copy: it reacts at once, in whichever mode it is running this code.
       std::vector<Index> modes = modesRunning(team, planIndex, in.service);
+      path.effects.push_back({lowering::Effect::Kind::Throw, s.event});
       for (Index md : modes) {
         Path p = path;
         if (vars_[robot].mode && modes.size() > 1) {
           const std::vector<Index>& all = m_.teams[team].modes;
-          p.guard.push_back(eq(Expr::var(*vars_[robot].mode), static_cast<std::int32_t>(std::find(all.begin(), all.end(), md) - all.begin())));
+          auto index = static_cast<std::int32_t>(std::find(all.begin(), all.end(), md) - all.begin());
+          p.guard.push_back(eq(Expr::var(*vars_[robot].mode), index));
+          p.guards.push_back(lowering::Guard(lowering::Guard::Kind::InMode, static_cast<Index>(index)));
         }
         p.words.push_back("throws " + event.name);
         for (const model::Transition& tr : m_.modes[md].transitions) {
           if (tr.isDefault || tr.event != s.event) continue;
           for (ir::Assignment& a : enterMode(robot, tr.target)) p.updates.push_back(std::move(a));
+          p.effects.push_back({lowering::Effect::Kind::EnterMode, tr.target});
           p.words.push_back("mode " + m_.modes[tr.target].name);
           p.changesMode = true;
         }
@@ -562,6 +653,7 @@ void Translator::effect(Index robot, std::size_t planIndex, const Instr& in, Pat
           path.updates.push_back({msg->second, Expr::ite(alive(q), Expr::constant(value), Expr::var(msg->second))});
         }
       }
+      path.effects.push_back({lowering::Effect::Kind::Publish, tp, 0, &s});
       path.words.push_back("publishes " + m_.teams[m_.topics[tp].owner].name + "." + m_.topics[tp].var);
       return out.push_back(std::move(path));
     }
@@ -571,6 +663,8 @@ void Translator::effect(Index robot, std::size_t planIndex, const Instr& in, Pat
       // Stops one past the capacity: buffer_bounds reports the overflow there.
       path.guard.push_back(Expr::binary(Op::Le, Expr::var(ch), Expr::constant(static_cast<std::int32_t>(m_.topics[s.topic].buffer))));
       path.updates.push_back({ch, Expr::binary(Op::Add, Expr::var(ch), Expr::constant(1))});
+      path.guards.push_back(lowering::Guard(lowering::Guard::Kind::ChannelSpace, s.topic));
+      path.effects.push_back({lowering::Effect::Kind::Send, s.topic});
       path.words.push_back("sends " + m_.topics[s.topic].var);
       return out.push_back(std::move(path));
     }
@@ -579,6 +673,8 @@ void Translator::effect(Index robot, std::size_t planIndex, const Instr& in, Pat
       ir::VarId ch = channel_.at(s.topic);
       path.guard.push_back(Expr::binary(Op::Gt, Expr::var(ch), Expr::constant(0)));
       path.updates.push_back({ch, Expr::binary(Op::Sub, Expr::var(ch), Expr::constant(1))});
+      path.guards.push_back(lowering::Guard(lowering::Guard::Kind::ChannelData, s.topic));
+      path.effects.push_back({lowering::Effect::Kind::Receive, s.topic});
       path.words.push_back("receives " + m_.topics[s.topic].var);
       return out.push_back(std::move(path));
     }

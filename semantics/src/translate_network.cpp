@@ -11,7 +11,7 @@ Expr Translator::inService(Index robot, const std::string& service) const {
   std::vector<Expr> at;
   auto it = sites_.find({m_.robots[robot].team, service});
   if (it == sites_.end()) return Expr::constant(0);
-  for (const ServiceSite& s : it->second) {
+  for (const ServiceSite& s : it->second.at) {
     if (vars_[robot].pc[s.plan]) at.push_back(eq(Expr::var(*vars_[robot].pc[s.plan]), static_cast<std::int32_t>(s.instr)));
   }
   return ir::conjunction({alive(robot), ir::disjunction(std::move(at))});
@@ -24,7 +24,7 @@ Expr Translator::inService(Index robot, const std::string& service) const {
 void Translator::knowledgeRules() {
   for (const auto& [key, sites] : sites_) {
     const auto& [team, service] = key;
-    const strategy::Service& sv = *m_.strategy.service(service);
+    const strategy::Service& sv = m_.strategy.services[sites.service];
     for (Index q : m_.teams[team].robots) {
       for (Index r : m_.teams[team].robots) {
         if (q == r) continue;
@@ -47,7 +47,15 @@ void Translator::knowledgeRules() {
             // happen. Reliable dissemination resends until acknowledged.
             bool reliable = sv.dissemination && sv.dissemination->via == "reliable";
             learn.weaklyFair = !loseKnowledge_ || fairLoss_ || reliable;
-            addRule(std::move(learn));
+            learn.origin = origin(sv.dissemination ? sv.dissemination->at : sv.at, "dissemination");
+            RuleMeaning meaning;
+            meaning.kind = RuleMeaning::Kind::Learn;
+            meaning.robot = q;
+            meaning.peer = r;
+            meaning.service = sv.name;
+            meaning.knowledge = k.name;
+            meaning.count = n;
+            addRule(std::move(learn), std::move(meaning));
           }
         }
       }
@@ -67,7 +75,7 @@ void Translator::eventRules() {
       deliver.robot = static_cast<std::int32_t>(q);
       deliver.kind = ir::RuleKind::Delivery;
       deliver.label = "receives event " + event.name;
-      deliver.origin = event.thrownAt.empty() ? "" : origin(event.thrownAt.front());
+      deliver.origin = origin(event.thrownAt.empty() ? SourceRange{} : event.thrownAt.front(), "event");
       deliver.guard = ir::conjunction({alive(q), Expr::var(var)});
       ir::Branch branch;
       branch.assignments.push_back({var, Expr::constant(0)});
@@ -92,10 +100,17 @@ void Translator::eventRules() {
       // Fair loss: a loss rule competes with delivery, so only strong fairness makes delivery win
       // in the end.
       deliver.stronglyFair = loseEvents_ && !event.delivery.reliable && fairLoss_;
-      addRule(std::move(deliver));
+      RuleMeaning meaning;
+      meaning.kind = RuleMeaning::Kind::EventDelivery;
+      meaning.robot = q;
+      meaning.index = e;
+      addRule(std::move(deliver), meaning);
       if (loseEvents_ && !event.delivery.reliable) {
-        addRule(robotRule("lose." + event.name, q, ir::RuleKind::Loss, "loses event " + event.name,
-                          ir::conjunction({alive(q), Expr::var(var)}), {{var, Expr::constant(0)}}));
+        ir::Rule lose = robotRule("lose." + event.name, q, ir::RuleKind::Loss, "loses event " + event.name,
+                                  ir::conjunction({alive(q), Expr::var(var)}), {{var, Expr::constant(0)}});
+        lose.origin = origin(event.thrownAt.empty() ? SourceRange{} : event.thrownAt.front(), "event");
+        meaning.kind = RuleMeaning::Kind::EventLoss;
+        addRule(std::move(lose), meaning);
       }
     }
   }
@@ -122,9 +137,17 @@ void Translator::messageRules() {
                                    {{vars_[q].view.at(tp), Expr::var(msg)}, {msg, Expr::constant(0)}});
       deliver.weaklyFair = true;
       deliver.stronglyFair = losePublish_ && fairLoss_;
-      addRule(std::move(deliver));
+      deliver.origin.construct = "topic";  // no position: the value may come from any publish
+      RuleMeaning meaning;
+      meaning.kind = RuleMeaning::Kind::MessageDelivery;
+      meaning.robot = q;
+      meaning.index = tp;
+      addRule(std::move(deliver), meaning);
       if (losePublish_) {
-        addRule(robotRule("lose." + topic, q, ir::RuleKind::Loss, "loses " + topic, std::move(pending), {{msg, Expr::constant(0)}}));
+        ir::Rule lose = robotRule("lose." + topic, q, ir::RuleKind::Loss, "loses " + topic, std::move(pending), {{msg, Expr::constant(0)}});
+        lose.origin.construct = "topic";
+        meaning.kind = RuleMeaning::Kind::MessageLoss;
+        addRule(std::move(lose), meaning);
       }
     }
   }
@@ -150,7 +173,11 @@ void Translator::crashRules() {
       if (v.robot == static_cast<std::int32_t>(r) && var != *vars_[r].alive) branch.assignments.push_back({var, Expr::constant(v.init)});
     }
     crash.branches.push_back(std::move(branch));
-    addRule(std::move(crash));
+    crash.origin.construct = "crash";  // no position: a crash can happen anywhere
+    RuleMeaning meaning;
+    meaning.kind = RuleMeaning::Kind::Crash;
+    meaning.robot = r;
+    addRule(std::move(crash), std::move(meaning));
   }
 }
 
@@ -238,7 +265,10 @@ void Translator::roundRules(Index b) {
     ir::Rule round;
     round.name = "heartbeat." + std::to_string(b) + "." + std::to_string(lost);
     round.kind = ir::RuleKind::Timer;
-    round.origin = origin(m_.groupBlocks[b].at);
+    round.origin = origin(m_.groupBlocks[b].at, "leader block");
+    RuleMeaning meaning;
+    meaning.kind = RuleMeaning::Kind::HeartbeatPeriod;
+    meaning.index = b;
     std::vector<Expr> guard{ir::disjunction(anyWaiting)};
     std::vector<ir::Assignment> updates;
     std::string lostNames;
@@ -256,6 +286,7 @@ void Translator::roundRules(Index b) {
       bool isLost = (lost >> i) & 1u;
       if (isLost) {
         lostNames += (lostNames.empty() ? "" : ", ") + m_.robots[c].name;
+        meaning.lostTo.push_back(c);
         guard.push_back(waiting);
         guard.push_back(heard);  // a heartbeat that was never sent cannot be lost
         guard.push_back(Expr::binary(Op::Lt, Expr::var(v.lossRun.at(b)), Expr::constant(burst)));
@@ -281,7 +312,7 @@ void Translator::roundRules(Index b) {
     round.branches.push_back({1.0, std::move(updates)});
     round.weaklyFair = lostNames.empty();
     round.stronglyFair = lostNames.empty() && loseHeartbeats_ && fairLoss_;
-    addRule(std::move(round));
+    addRule(std::move(round), std::move(meaning));
   }
 }
 
@@ -310,7 +341,7 @@ void Translator::leaderRules() {
           take.name = m_.robots[c].name + ".takes_over." + std::to_string(range.first);
           take.robot = static_cast<std::int32_t>(c);
           take.label = "suspects the leader (no heartbeat for the failure timeout) and takes over";
-          take.origin = origin(block.arms[leaderArm].at);
+          take.origin = origin(block.arms[leaderArm].at, "leader block");
           take.guard = ir::conjunction({alive(c), lnot(Expr::var(v.leads.at(b))),
                                         Expr::binary(Op::Ge, pc, Expr::constant(static_cast<std::int32_t>(range.armFirst[othersArm]))),
                                         Expr::binary(Op::Lt, pc, Expr::constant(static_cast<std::int32_t>(range.armEnd(othersArm)))),
@@ -326,7 +357,14 @@ void Translator::leaderRules() {
           }
           take.branches.push_back({1.0, std::move(updates)});
           take.weaklyFair = true;
-          addRule(std::move(take));
+          RuleMeaning meaning;
+          meaning.kind = RuleMeaning::Kind::Takeover;
+          meaning.robot = c;
+          meaning.index = b;
+          meaning.plan = p;
+          meaning.from = range.armFirst[othersArm];
+          meaning.to = leaderEntry;
+          addRule(std::move(take), std::move(meaning));
         }
       }
     }
@@ -345,7 +383,7 @@ void Translator::defaultRules() {
         rule.name = m_.robots[r].name + ".default." + m_.modes[modes[k]].name;
         rule.robot = static_cast<std::int32_t>(r);
         rule.label = "finished mode " + m_.modes[modes[k]].name + ": mode " + m_.modes[tr.target].name;
-        rule.origin = origin(tr.at);
+        rule.origin = origin(tr.at, "default");
         std::vector<Expr> guard{alive(r)};
         if (v.mode) guard.push_back(eq(Expr::var(*v.mode), static_cast<std::int32_t>(k)));
         for (const std::optional<ir::VarId>& pc : v.pc) {
@@ -354,13 +392,18 @@ void Translator::defaultRules() {
         rule.guard = ir::conjunction(std::move(guard));
         rule.branches.push_back({1.0, enterMode(r, tr.target)});
         rule.weaklyFair = true;
-        if (!rule.branches.front().assignments.empty()) addRule(std::move(rule));
+        RuleMeaning meaning;
+        meaning.kind = RuleMeaning::Kind::ModeDefault;
+        meaning.robot = r;
+        meaning.mode = modes[k];
+        meaning.target = tr.target;
+        if (!rule.branches.front().assignments.empty()) addRule(std::move(rule), std::move(meaning));
       }
     }
   }
 }
 
-std::optional<ir::Model> Translator::run() {
+std::optional<Translation> Translator::run() {
   assumptions();
   variables();
   for (Index r = 0; r < m_.robots.size(); ++r) {
@@ -377,16 +420,24 @@ std::optional<ir::Model> Translator::run() {
   defaultRules();
   invariants();
   livenessProperties();
-  return std::move(out_);
+  lowering_.programs = programs_;
+  return Translation{std::move(out_), std::move(lowering_)};
 }
 
 }  // namespace semo::detail
 
 namespace semo {
 
+std::optional<Translation> translateMission(const model::MissionModel& mission, const TranslationOptions& options,
+                                            const SourceManager& sources, DiagnosticEngine& diags) {
+  return detail::Translator(mission, options, sources, diags).run();
+}
+
 std::optional<ir::Model> translate(const model::MissionModel& mission, const TranslationOptions& options,
                                    const SourceManager& sources, DiagnosticEngine& diags) {
-  return detail::Translator(mission, options, sources, diags).run();
+  std::optional<Translation> t = translateMission(mission, options, sources, diags);
+  if (!t) return std::nullopt;
+  return std::move(t->model);
 }
 
 }  // namespace semo

@@ -102,7 +102,7 @@ void Translator::invariants() {
             std::string what = arm.kind == model::GroupArm::Kind::Leader ? "leader" : "group";
             inv.name = "group_formation[" + m_.services[block.service].name + " " + what + " (" + arm.names.front() +
                        (arm.names.size() > 1 ? ", ..." : "") + ")]";
-            inv.origin = origin(arm.at);
+            inv.origin = origin(arm.at, "").text();
             inv.holds = Expr::binary(Op::Implies, ir::disjunction(inside), ir::disjunction(std::move(live)));
             out_.invariants.push_back(std::move(inv));
           }
@@ -114,7 +114,7 @@ void Translator::invariants() {
     for (const auto& [tp, ch] : channel_) {
       ir::Invariant inv;
       inv.name = "buffer_bounds[" + m_.teams[m_.topics[tp].owner].name + "." + m_.topics[tp].var + "]";
-      inv.origin = origin(m_.topics[tp].firstUse);
+      inv.origin = origin(m_.topics[tp].firstUse, "").text();
       inv.holds = Expr::binary(Op::Le, Expr::var(ch), Expr::constant(static_cast<std::int32_t>(m_.topics[tp].buffer)));
       out_.invariants.push_back(std::move(inv));
     }
@@ -131,8 +131,8 @@ void Translator::invariants() {
         // changes: the robot is busy, not stuck, even when no fact is left to find.
         std::vector<Expr> atRest{eq(Expr::var(*pc), 0)};
         for (const auto& [key, sites] : sites_) {
-          if (key.first != team || m_.strategy.service(key.second)->goal) continue;
-          for (const ServiceSite& site : sites) {
+          if (key.first != team || m_.strategy.services[sites.service].goal) continue;
+          for (const ServiceSite& site : sites.at) {
             if (site.plan == p) atRest.push_back(eq(Expr::var(*pc), static_cast<std::int32_t>(site.instr)));
           }
         }
@@ -149,7 +149,7 @@ void Translator::invariants() {
     std::string why = "it is not of the form 'always <state formula>' (the LTL engine will check it)";
     if (p.formula->kind == model::Ltl::Kind::Always) holds = stateFormula(*p.formula->left, why);
     if (holds) {
-      out_.invariants.push_back({p.name, origin(p.at), std::move(*holds)});
+      out_.invariants.push_back({p.name, origin(p.at, "").text(), std::move(*holds)});
       continue;
     }
     why.clear();
@@ -158,7 +158,7 @@ void Translator::invariants() {
       diags_.warning(p.at, "property '" + p.name + "' is not checked: " + why);
       continue;
     }
-    out_.properties.push_back({p.name, origin(p.at), std::move(*formula)});
+    out_.properties.push_back({p.name, origin(p.at, "").text(), std::move(*formula)});
   }
   if (wants("unique_leader")) {
     for (Index b : leaderBlocks_) {
@@ -172,7 +172,7 @@ void Translator::invariants() {
       }
       ir::Invariant inv;
       inv.name = "unique_leader[" + m_.services[m_.groupBlocks[b].service].name + "]";
-      inv.origin = origin(m_.groupBlocks[b].at);
+      inv.origin = origin(m_.groupBlocks[b].at, "").text();
       inv.holds = ir::conjunction(std::move(pairs));
       out_.invariants.push_back(std::move(inv));
     }
@@ -227,7 +227,7 @@ void Translator::livenessProperties() {
     for (const auto& [key, sites] : sites_) {
       const auto& [team, service] = key;
       const std::vector<Index>& robots = m_.teams[team].robots;
-      for (const strategy::Knowledge& k : m_.strategy.service(service)->knowledge) {
+      for (const strategy::Knowledge& k : m_.strategy.services[sites.service].knowledge) {
         // Again and again, the live members working in the service hold the same facts.
         std::vector<Expr> same;
         for (std::size_t i = 0; i < robots.size(); ++i) {
@@ -263,7 +263,7 @@ void Translator::livenessProperties() {
       L trigger = L::of(ir::conjunction({noLeader(b), someoneWaits}));
       L answer = L::of(Expr::binary(Op::Or, lnot(noLeader(b)), lnot(someoneWaits)));
       out_.properties.push_back({"leader_reelection[" + m_.services[m_.groupBlocks[b].service].name + "]",
-                                 origin(m_.groupBlocks[b].at),
+                                 origin(m_.groupBlocks[b].at, "").text(),
                                  L::unary(L::Kind::Always, L::binary(L::Kind::Implies, std::move(trigger),
                                                                      L::unary(L::Kind::Eventually, std::move(answer))))});
     }

@@ -5,13 +5,20 @@
 #include <map>
 #include <optional>
 
+#include "semo/semantics/lowering.hpp"
+#include "semo/semantics/robot_program.hpp"
 #include "semo/semantics/translate.hpp"
-#include "translate_program.hpp"
 
 namespace semo::detail {
 
 using ir::Expr;
 using ir::Op;
+using lowering::BlockRange;
+using lowering::Instr;
+using lowering::PlanProgram;
+using lowering::RuleMeaning;
+using lowering::VariableRole;
+using model::Index;
 
 inline Expr eq(Expr a, std::int32_t v) { return Expr::binary(Op::Eq, std::move(a), Expr::constant(v)); }
 inline Expr lnot(Expr a) { return Expr::unary(Op::Not, std::move(a)); }
@@ -21,7 +28,7 @@ class Translator {
   Translator(const model::MissionModel& m, const TranslationOptions& o, const SourceManager& sources, DiagnosticEngine& diags)
       : m_(m), options_(o), sources_(sources), diags_(diags) {}
 
-  std::optional<ir::Model> run();
+  std::optional<Translation> run();
 
  private:
   struct RobotVars {
@@ -41,12 +48,16 @@ class Translator {
     std::size_t instr;
   };
 
-  // A rule under construction while walking from a control point.
+  // A rule under construction while walking from a control point: its IR guard, updates and
+  // label, and the same step in the mission's terms (actions, guards, effects) for the runtime.
   struct Path {
     std::vector<Expr> guard;
     std::vector<ir::Assignment> updates;
     std::vector<std::string> words;
     bool changesMode = false;
+    std::vector<lowering::Action> actions;
+    std::vector<lowering::Guard> guards;
+    std::vector<lowering::Effect> effects;
   };
 
   void assumptions();
@@ -58,7 +69,9 @@ class Translator {
   void knowledgeRules();
   void groupServiceRules(Index robot, std::size_t planIndex, std::size_t at);
   void blockExitRules(Index robot, std::size_t planIndex, std::size_t at);
-  [[nodiscard]] Expr groupStarted(Index robot, std::size_t planIndex, std::size_t at) const;
+  // The synchronised start of the group service at `at`; `pcs` (if given) receives the program
+  // points another robot must not be at.
+  [[nodiscard]] Expr groupStarted(Index robot, std::size_t planIndex, std::size_t at, std::vector<std::size_t>* pcs = nullptr) const;
   [[nodiscard]] Expr inService(Index robot, const std::string& service) const;
   void eventRules();
   void messageRules();
@@ -73,14 +86,15 @@ class Translator {
   [[nodiscard]] std::optional<Expr> stateFormula(const model::Ltl& f, std::string& why) const;
 
   ir::VarId addVar(std::string name, std::int32_t min, std::int32_t max, std::int32_t init, std::int32_t robot,
-                   std::vector<std::string> valueNames = {});
+                   VariableRole role, std::vector<std::string> valueNames = {});
   [[nodiscard]] Expr alive(Index robot) const;
   [[nodiscard]] std::optional<Expr> condition(Index robot, const model::Cond& c) const;
   [[nodiscard]] std::optional<Expr> operand(Index robot, const model::Expr& e) const;
   [[nodiscard]] std::int32_t symbolValue(Index topic, const model::Expr& e) const;
   [[nodiscard]] std::vector<ir::Assignment> enterMode(Index robot, Index mode) const;
   [[nodiscard]] std::vector<Index> modesRunning(Index team, std::size_t planIndex, Index service) const;
-  [[nodiscard]] std::string origin(const SourceRange& r) const;
+  [[nodiscard]] ir::Origin origin(const SourceRange& r, std::string construct) const;
+  [[nodiscard]] static std::string constructOf(const Instr& in);
   [[nodiscard]] bool topicRead(Index team, Index topic) const;
   [[nodiscard]] std::int32_t crashBudget(Index team) const;
   [[nodiscard]] std::vector<Index> preferenceOrder(Index block) const;
@@ -91,7 +105,10 @@ class Translator {
   [[nodiscard]] Expr waitingForHeartbeats(Index robot, Index block) const;
   [[nodiscard]] std::int32_t timeoutPeriods(Index block) const;
   void roundRules(Index block);
-  void addRule(ir::Rule rule) { out_.rules.push_back(std::move(rule)); }
+  void addRule(ir::Rule rule, RuleMeaning meaning) {
+    out_.rules.push_back(std::move(rule));
+    lowering_.rules.push_back(std::move(meaning));
+  }
   // A one-outcome rule of `robot`, named "<robot>.<what>".
   [[nodiscard]] ir::Rule robotRule(const std::string& what, Index robot, ir::RuleKind kind, std::string label, Expr guard,
                                    std::vector<ir::Assignment> updates) const;
@@ -104,12 +121,19 @@ class Translator {
   const SourceManager& sources_;
   DiagnosticEngine& diags_;
   ir::Model out_;
+  lowering::Lowering lowering_;
   std::vector<RobotVars> vars_;
   std::vector<std::vector<PlanProgram>> programs_;  // per team, per plan
   std::vector<std::optional<ir::VarId>> crashed_;   // per team
   std::map<Index, ir::VarId> channel_;              // per reliable topic
   std::vector<Index> leaderBlocks_;
-  std::map<std::pair<Index, std::string>, std::vector<ServiceSite>> sites_;  // (team, group service)
+  // Per (team, group service name), in that order: the service (index into the strategy's) and
+  // where the team's robots work in it.
+  struct ServiceSites {
+    Index service = model::kNone;
+    std::vector<ServiceSite> at;
+  };
+  std::map<std::pair<Index, std::string>, ServiceSites> sites_;
   bool losePublish_ = false, loseEvents_ = false, loseHeartbeats_ = false, loseKnowledge_ = false;
   bool fairLoss_ = false;
   std::size_t rulesPerPoint_ = 0;

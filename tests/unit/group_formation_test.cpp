@@ -99,6 +99,7 @@ TEST(GroupFormation, AGroupNeedsTheMinimumSizeOfTheGroupServicesItRuns) {
   branch.thenBody.emplace_back();
   branch.thenBody.back().kind = model::Stmt::Kind::CallGroupService;
   branch.thenBody.back().service = "search";
+  branch.thenBody.back().strategyService = 0;  // as elaboration resolves it
   arm.body.push_back(std::move(branch));
   block.arms.push_back(std::move(arm));
   m.groupBlocks.push_back(std::move(block));

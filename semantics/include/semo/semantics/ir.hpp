@@ -67,11 +67,24 @@ struct Branch {
   std::vector<Assignment> assignments;  // simultaneous: every right-hand side reads the old state
 };
 
+// Where a rule comes from in the mission: the construct and its position (empty for a model
+// written by hand without @origin). The text form is "file:line:col".
+struct Origin {
+  std::string file;
+  std::uint32_t line = 0, column = 0;
+  std::string construct;  // "publish", "loop", "leader block", "event", ... (empty when not known)
+  [[nodiscard]] bool empty() const { return file.empty() && line == 0; }
+  [[nodiscard]] std::string text() const;
+  // "file:line:col" (the file may itself hold ':'); any other text is kept whole as the file.
+  static Origin parse(const std::string& text, std::string construct = {});
+  bool operator==(const Origin&) const = default;
+};
+
 struct Rule {
   std::string name;
   std::int32_t robot = kNoRobot;
   RuleKind kind = RuleKind::Step;
-  std::string origin;  // "file:line:col" of the mission construct, or empty
+  Origin origin;
   std::string label;   // what the step means for a person ("throws find_color_paper")
   Expr guard;
   std::vector<Branch> branches;

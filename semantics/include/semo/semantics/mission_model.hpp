@@ -69,6 +69,7 @@ struct Stmt {
   SourceRange at;
   std::string service;          // calls: the name called
   Index composite = kNone;      // CallComposite
+  Index strategyService = kNone;  // CallPrimitive, CallGroupService: index into the strategy's services
   std::vector<Expr> args;       // calls
   Index event = kNone;          // Throw: index into the team's events
   std::int64_t durationMillis = 0;  // Loop, Wait
@@ -220,6 +221,12 @@ struct MissionModel {
   [[nodiscard]] Index findService(Index team, const std::string& name) const;
   [[nodiscard]] Index findMode(Index team, const std::string& name) const;
   [[nodiscard]] Index findTopic(Index owner, const std::string& var) const;
+  // The strategy's definition of the service a call statement names (resolved by elaboration).
+  [[nodiscard]] const strategy::Service& serviceOf(const Stmt& call) const { return strategy.services.at(call.strategyService); }
+  // Its implementation for `robot`'s type, or null.
+  [[nodiscard]] const strategy::Implementation* implementationOf(const Stmt& call, Index robot) const {
+    return serviceOf(call).implementationFor(robots.at(robot).type);
+  }
 };
 
 }  // namespace semo::model

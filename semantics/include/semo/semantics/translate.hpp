@@ -5,6 +5,7 @@
 
 #include "semo/frontend/diagnostics.hpp"
 #include "semo/semantics/ir.hpp"
+#include "semo/semantics/lowering.hpp"
 #include "semo/semantics/mission_model.hpp"
 
 namespace semo {
@@ -15,8 +16,18 @@ struct TranslationOptions {
   std::optional<bool> fairLossOverride;     // --fair-loss / --unfair-loss
 };
 
+// The IR of a mission and what its variables and rules mean (lowering.hpp), index for index.
+struct Translation {
+  ir::Model model;
+  lowering::Lowering lowering;
+};
+
 // Returns nullopt (with diagnostics) when the mission uses something the translation cannot bound.
-// `sources` names the mission files in the rules' origins.
+// `sources` names the mission files in the rules' origins. The lowering points into `mission`.
+std::optional<Translation> translateMission(const model::MissionModel& mission, const TranslationOptions& options,
+                                            const SourceManager& sources, DiagnosticEngine& diags);
+
+// The IR alone (what every verification engine reads).
 std::optional<ir::Model> translate(const model::MissionModel& mission, const TranslationOptions& options,
                                    const SourceManager& sources, DiagnosticEngine& diags);
 

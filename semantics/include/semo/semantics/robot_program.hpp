@@ -1,13 +1,15 @@
 #pragma once
-// Services flattened into one instruction graph per (team, plan): the intermediate step of the
-// translation to the IR (specs/semantics.md, "Services as programs").
+// Services flattened into one instruction graph per (team, plan) (specs/semantics.md, "Services as
+// programs"). One lowering for everything downstream: the IR translation walks it to make the
+// robots' rules, and the runtime's step tables keep its instruction indices as program counters,
+// so a robot's `pc` in the IR and in the running code is the same number.
 #include <cstddef>
 #include <string>
 #include <vector>
 
 #include "semo/semantics/mission_model.hpp"
 
-namespace semo::detail {
+namespace semo::lowering {
 
 using model::Index;
 
@@ -57,4 +59,4 @@ struct PlanProgram {
 // Builds the program of one plan of one team from every service a mode sets on that plan.
 PlanProgram buildProgram(const model::MissionModel& m, Index team, const std::string& plan);
 
-}  // namespace semo::detail
+}  // namespace semo::lowering

@@ -1,8 +1,8 @@
-#include "translate_program.hpp"
+#include "semo/semantics/robot_program.hpp"
 
 #include <algorithm>
 
-namespace semo::detail {
+namespace semo::lowering {
 
 namespace {
 
@@ -167,4 +167,4 @@ PlanProgram buildProgram(const model::MissionModel& m, Index team, const std::st
   return p;
 }
 
-}  // namespace semo::detail
+}  // namespace semo::lowering
