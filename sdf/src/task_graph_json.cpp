@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "json_positions.hpp"
+#include "semo/runtime/json_positions.hpp"
 #include "semo/sdf/task_graph_io.hpp"
 
 namespace semo::sdf {
@@ -60,7 +60,7 @@ class Reader {
   const std::string& text_;
   FileId file_;
   DiagnosticEngine& diags_;
-  detail::JsonPositions positions_;
+  runtime::JsonPositions positions_;
   TaskGraph tg_;
   std::map<std::string, std::uint32_t> taskIndex_, channelIndex_;
 

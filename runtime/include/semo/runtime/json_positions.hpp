@@ -9,7 +9,7 @@
 #include <unordered_map>
 #include <vector>
 
-namespace semo::sdf::detail {
+namespace semo::runtime {
 
 class JsonPositions {
  public:
@@ -90,4 +90,4 @@ class JsonPositions {
   }
 };
 
-}  // namespace semo::sdf::detail
+}  // namespace semo::runtime
