@@ -24,17 +24,24 @@ class ProgramBuilder {
     return p_.code.size() - 1;
   }
 
+  // Where a periodic loop's body starts, so that the runtime knows when an iteration begins (an empty
+  // body loops on its back edge alone and has no head).
+  void markLoopHead(std::size_t head, std::size_t back) {
+    if (head != back) p_.code[head].loopBack = back;
+  }
+
   std::size_t serviceBody(Index s, std::size_t cont) {
     const model::CompositeService& sv = m_.services[s];
     if (!sv.repeat) return block(sv.body, cont);
     if (sv.repeat->isPeriod) {
-      std::size_t back = add({Instr::Kind::Jump, nullptr, nullptr, 0, 0, 0, model::kNone, {}, true, "repeats " + sv.name});
+      std::size_t back = add({Instr::Kind::Jump, nullptr, nullptr, 0, 0, 0, model::kNone, {}, true, "repeats " + sv.name, 0});
       std::size_t entry = block(sv.body, back);
       p_.code[back].next = entry;
+      markLoopHead(entry, back);
       return entry;
     }
     std::size_t again = add({Instr::Kind::RepeatBranch, nullptr, sv.repeat->cond.get(), cont, 0, 0, model::kNone, {}, false,
-                             "repeats " + sv.name});
+                             "repeats " + sv.name, 0});
     std::size_t entry = block(sv.body, again);
     p_.code[again].alt = entry;
     return entry;
@@ -44,9 +51,10 @@ class ProgramBuilder {
   std::size_t block(const std::vector<model::Stmt>& body, std::size_t cont) {
     auto loop = std::find_if(body.begin(), body.end(), [](const model::Stmt& s) { return s.kind == model::Stmt::Kind::Loop; });
     if (loop == body.end()) return sequence(body.begin(), body.end(), cont);
-    std::size_t back = add({Instr::Kind::Jump, &*loop, nullptr, 0, 0, 0, model::kNone, {}, true, "loops"});
+    std::size_t back = add({Instr::Kind::Jump, &*loop, nullptr, 0, 0, 0, model::kNone, {}, true, "loops", 0});
     std::size_t head = sequence(loop + 1, body.end(), back);
     p_.code[back].next = head;
+    markLoopHead(head, back);
     return sequence(body.begin(), loop, head);
   }
 

@@ -77,6 +77,14 @@ void Translator::assumptions() {
   if (loseKnowledge) loss += std::string(loss.empty() ? "" : ", ") + "knowledge";
   loseKnowledge_ = loseKnowledge;
   fairLoss_ = options_.fairLossOverride.value_or(m_.assumptions.fairLoss);
+  lowering::LoweredAssumptions& used = lowering_.assumptions;
+  for (Index t = 0; t < m_.teams.size(); ++t) used.crashBudget.push_back(crashBudget(t));
+  used.losePublish = losePublish_;
+  used.loseEvents = loseEvents_;
+  used.loseKnowledge = loseKnowledge_;
+  used.loseHeartbeats = loseHeartbeats_;
+  used.fairLoss = fairLoss_;
+  used.lossBurst = m_.assumptions.lossBurst;
   if (!loss.empty()) loss += fairLoss_ ? " (fair: a message sent again and again gets through)" : " (unfair: may be lost for ever)";
   out_.assumptions.push_back("loss: " + (loss.empty() ? std::string("none") : loss));
   out_.assumptions.push_back("timing: any (asynchronous interleaving)");
@@ -497,6 +505,11 @@ void Translator::finish(Index robot, std::size_t planIndex, std::size_t start, s
 void Translator::walk(Index robot, std::size_t planIndex, std::size_t at, Path path, std::size_t start, int depth) {
   const PlanProgram& prog = programs_[m_.robots[robot].team][planIndex];
   const Instr& in = prog.code[at];
+  if (depth > 0 && in.loopBack != 0) {
+    lowering::Action enters(lowering::Action::Kind::LoopStart, nullptr);
+    enters.jump = in.loopBack;
+    path.actions.push_back(enters);
+  }
   if (depth > 0 && in.controlPoint) return finish(robot, planIndex, start, at, std::move(path));
   if (depth > 10000) return;  // cannot happen: every cycle holds a control point
   switch (in.kind) {

@@ -54,12 +54,14 @@ struct Action {
     Wait,   // wait(D) (stmt)
     Sense,  // a condition over sensed values or knowledge: the environment decides (the IR has both outcomes)
     Test,   // a condition over the robot's topic views: part of the IR rule's guard
+    LoopStart,  // the walk enters the body of the periodic loop whose back edge is instruction `jump`
   };
   Kind kind = Kind::Call;
   const model::Stmt* stmt = nullptr;  // Call, Wait
   const model::Cond* cond = nullptr;  // Sense, Test
   bool expect = true;                 // Sense, Test: the outcome this path needs
   bool repeat = false;                // the condition of `repeat (cond)` (else an `if`)
+  std::size_t jump = 0;               // LoopStart
 
   Action() = default;
   Action(Kind k, const model::Stmt* s, const model::Cond* c = nullptr, bool expected = true, bool isRepeat = false)
@@ -145,7 +147,16 @@ struct RuleMeaning {
 };
 const char* meaningName(RuleMeaning::Kind kind);
 
+// The fault assumptions the translation used (the verify block, overridden by the options).
+struct LoweredAssumptions {
+  std::vector<std::int64_t> crashBudget;  // per team
+  bool losePublish = false, loseEvents = false, loseKnowledge = false, loseHeartbeats = false;
+  bool fairLoss = true;
+  std::int64_t lossBurst = 1;
+};
+
 struct Lowering {
+  LoweredAssumptions assumptions;
   std::vector<std::vector<PlanProgram>> programs;  // per team, per plan
   std::vector<VariableRole> variables;             // per IR variable
   std::vector<RuleMeaning> rules;                  // per IR rule

@@ -38,6 +38,7 @@ struct Instr {
   std::vector<std::size_t> arms;  // Groups
   bool controlPoint = false;      // a state the robot can rest in between rules
   std::string label;              // what a person reads in a trace
+  std::size_t loopBack = 0;       // the first instruction of a periodic loop's body: the loop's back edge (a Jump)
 };
 
 struct BlockRange {
