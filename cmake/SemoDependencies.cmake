@@ -9,6 +9,8 @@ find_package(tinyxml2 REQUIRED)
 find_package(fmt REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
+# libssl-dev: SHA-256 (EVP) for model fingerprints.
+find_package(OpenSSL REQUIRED COMPONENTS Crypto)
 
 # urdfdom's config exports plain variables, not a target: wrap them once.
 add_library(semo_urdfdom INTERFACE)

@@ -5,14 +5,14 @@
 
 namespace semo::checker {
 
-namespace {
-
 std::string valueText(const ir::Variable& v, std::int32_t value) {
-  if (v.isBool) return value != 0 ? "true" : "false";
-  auto index = static_cast<std::size_t>(value - v.min);
+  if (v.isBool && (value == 0 || value == 1)) return value != 0 ? "true" : "false";
+  auto index = static_cast<std::size_t>(static_cast<std::int64_t>(value) - v.min);
   if (value >= v.min && index < v.valueNames.size()) return v.valueNames[index];
   return std::to_string(value);
 }
+
+namespace {
 
 std::string robotName(const ir::Model& m, const ir::Rule& r) {
   return r.robot == ir::kNoRobot ? "-" : m.robots.at(static_cast<std::size_t>(r.robot));

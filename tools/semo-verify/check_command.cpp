@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "semo/checker/explicit_search.hpp"
+#include "semo/checker/fingerprint.hpp"
 #include "semo/checker/liveness_search.hpp"
 #include "semo/checker/promela_export.hpp"
 #include "semo/semantics/ir_text.hpp"
@@ -142,10 +143,17 @@ int runCheck(const CheckOptions& options) {
   int code = violated ? kViolated : r.complete && live.complete ? kOk : kLimit;
 
   if (options.json) {
+    // Every counterexample names the model it belongs to, so that it can be read back on its own.
+    const std::string fingerprint = checker::modelFingerprint(*model);
+    auto traceJson = [&](const checker::Trace& t) {
+      nlohmann::json j = nlohmann::json::parse(checker::traceToJson(*model, t));
+      j["modelFingerprint"] = fingerprint;
+      return j;
+    };
     nlohmann::json props = nlohmann::json::array();
     for (const checker::PropertyResult& p : r.properties) {
       nlohmann::json jp = {{"name", p.name}, {"verdict", checker::verdictName(p.verdict)}, {"origin", p.origin}};
-      if (p.counterexample) jp["counterexample"] = nlohmann::json::parse(checker::traceToJson(*model, *p.counterexample));
+      if (p.counterexample) jp["counterexample"] = traceJson(*p.counterexample);
       jp["type"] = "safety";
       props.push_back(jp);
     }
@@ -153,7 +161,7 @@ int runCheck(const CheckOptions& options) {
       const checker::PropertyResult& p = live.properties[k];
       nlohmann::json jp = {{"name", p.name}, {"verdict", checker::verdictName(p.verdict)}, {"origin", p.origin}, {"type", "liveness"}};
       if (k < live.notes.size() && !live.notes[k].empty()) jp["note"] = live.notes[k];
-      if (p.counterexample) jp["counterexample"] = nlohmann::json::parse(checker::traceToJson(*model, *p.counterexample));
+      if (p.counterexample) jp["counterexample"] = traceJson(*p.counterexample);
       props.push_back(jp);
     }
     nlohmann::json root = {{"input", options.model.input},   {"assumptions", model->assumptions},
@@ -162,10 +170,11 @@ int runCheck(const CheckOptions& options) {
                            {"seconds", r.seconds},           {"bytesPerState", r.bytesPerState},
                            {"properties", props},            {"exitCode", code},
                            {"symmetry", r.symmetry},         {"engine", "explicit"}};
+    root["modelFingerprint"] = fingerprint;
     if (!engineReason.empty()) root["engineChoice"] = engineReason;
     if (!r.limitReached.empty()) root["limit"] = r.limitReached;
     if (r.depthBounded) root["boundedDepth"] = r.depth;
-    if (r.rangeError) root["modelError"] = nlohmann::json::parse(checker::traceToJson(*model, *r.rangeError));
+    if (r.rangeError) root["modelError"] = traceJson(*r.rangeError);
     if (!model->properties.empty()) {
       root["liveness"] = {{"productStates", live.states}, {"productTransitions", live.transitions},
                           {"complete", live.complete}, {"seconds", live.seconds},

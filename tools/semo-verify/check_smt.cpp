@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "semo/checker/fingerprint.hpp"
 #include "semo/checker/group_formation.hpp"
 #include "semo/checker/smt_search.hpp"
 #include "semo/semantics/load.hpp"
@@ -79,6 +80,13 @@ int runCheckSmt(const CheckOptions& options, const ir::Model& model) {
                           (options.bmcOnly ? " only (--bmc-only)" : ", then k-induction and IC3");
 
   if (options.json) {
+    // Every counterexample names the model it belongs to, so that it can be read back on its own.
+    const std::string fingerprint = checker::modelFingerprint(model);
+    auto traceJson = [&](const checker::Trace& t) {
+      nlohmann::json j = nlohmann::json::parse(checker::traceToJson(model, t));
+      j["modelFingerprint"] = fingerprint;
+      return j;
+    };
     nlohmann::json props = nlohmann::json::array();
     for (std::size_t j = 0; j < r.properties.size(); ++j) {
       const checker::PropertyResult& p = r.properties[j];
@@ -87,7 +95,7 @@ int runCheckSmt(const CheckOptions& options, const ir::Model& model) {
       if (out.proof[j] != checker::SmtProof::None) jp["proof"] = proofName(out.proof[j]);
       if (out.proof[j] == checker::SmtProof::Ic3) jp["invariantConjuncts"] = out.invariantConjuncts[j];
       if (out.deepCounterexample[j] != 0) jp["beyondBmcDepth"] = true;
-      if (p.counterexample) jp["counterexample"] = nlohmann::json::parse(checker::traceToJson(model, *p.counterexample));
+      if (p.counterexample) jp["counterexample"] = traceJson(*p.counterexample);
       props.push_back(jp);
     }
     for (const ir::Property& p : model.properties) {
@@ -97,6 +105,7 @@ int runCheckSmt(const CheckOptions& options, const ir::Model& model) {
     nlohmann::json root = {{"input", options.model.input}, {"engine", "smt"},           {"assumptions", model.assumptions},
                            {"bmcDepth", out.bmcDepth},      {"complete", r.complete}, {"seconds", r.seconds},
                            {"properties", props},           {"exitCode", code}};
+    root["modelFingerprint"] = fingerprint;
     nlohmann::json formationJson = nlohmann::json::array();
     for (std::size_t b = 0; b < groups.verdicts.size(); ++b) {
       const checker::FormationVerdict& v = groups.verdicts[b];
@@ -104,7 +113,7 @@ int runCheckSmt(const CheckOptions& options, const ir::Model& model) {
                                {"verdict", v.holds() ? "proven" : "VIOLATED"}, {"breakingSet", v.breakingSet}, {"unmetArms", v.unmetArms}});
     }
     root["groupFormation"] = formationJson;
-    if (r.rangeError) root["modelError"] = nlohmann::json::parse(checker::traceToJson(model, *r.rangeError));
+    if (r.rangeError) root["modelError"] = traceJson(*r.rangeError);
     if (!out.note.empty()) root["note"] = out.note;
     if (!options.engineReason.empty()) root["engineChoice"] = options.engineReason;
     std::cout << root.dump(2) << "\n";

@@ -28,6 +28,10 @@ struct Trace {
   std::size_t loopStart = SIZE_MAX;   // for lassos (liveness): the step where the loop begins
 };
 
+// A value as traces show it: true/false for a boolean, the value's name when the variable has one
+// (modes, program points), else the number.
+std::string valueText(const ir::Variable& v, std::int32_t value);
+
 std::string traceToText(const ir::Model& model, const Trace& trace);
 std::string traceToJson(const ir::Model& model, const Trace& trace);
 
