@@ -260,10 +260,10 @@ class StrategyReader {
       Dissemination dis;
       dis.at = xml_.at(d);
       if (const char* via = d->Attribute("via"); via != nullptr) {
-        if (std::string_view(via) == "broadcast" || std::string_view(via) == "reliable") {
+        if (std::string_view(via) == "broadcast" || std::string_view(via) == "reliable" || std::string_view(via) == "none") {
           dis.via = via;
         } else {
-          xml_.attributeError(d, "via", std::string("dissemination via '") + via + "' is not supported; use 'broadcast' or 'reliable'");
+          xml_.attributeError(d, "via", std::string("dissemination via '") + via + "' is not supported; use 'broadcast', 'reliable' or 'none'");
         }
       }
       if (auto period = xml_.durationMicros(d, "period")) {

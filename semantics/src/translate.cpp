@@ -425,8 +425,9 @@ void Translator::groupServiceRules(Index robot, std::size_t planIndex, std::size
   const Instr& in = prog.code[at];
   const strategy::Service& sv = m_.serviceOf(*in.stmt);
   const RobotVars& v = vars_[robot];
+  lowering::Guard started(lowering::Guard::Kind::GroupStarted, in.service, planIndex, at);
   Expr here = ir::conjunction({alive(robot), eq(Expr::var(*v.pc[planIndex]), static_cast<std::int32_t>(at)),
-                               groupStarted(robot, planIndex, at)});
+                               groupStarted(robot, planIndex, at, &started.pcs)});
   for (const strategy::Knowledge& k : sv.knowledge) {
     ir::VarId knows = v.knows.at(k.name);
     ir::Rule discover;
@@ -444,12 +445,12 @@ void Translator::groupServiceRules(Index robot, std::size_t planIndex, std::size
     meaning.from = meaning.to = at;
     meaning.service = sv.name;
     meaning.knowledge = k.name;
+    meaning.guards.push_back(started);
     addRule(std::move(discover), std::move(meaning));
   }
   if (!sv.goal) return;
   Path path;
-  lowering::Guard started(lowering::Guard::Kind::GroupStarted, in.service, planIndex, at);
-  path.guard.push_back(groupStarted(robot, planIndex, at, &started.pcs));
+  path.guard.push_back(groupStarted(robot, planIndex, at));
   path.guards.push_back(std::move(started));
   path.guard.push_back(Expr::binary(Op::Ge, Expr::var(v.knows.at(sv.goal->knowledge)), Expr::constant(static_cast<std::int32_t>(sv.goal->count))));
   lowering::Guard goal(lowering::Guard::Kind::Goal);
@@ -483,12 +484,6 @@ void Translator::finish(Index robot, std::size_t planIndex, std::size_t start, s
   if (!path.changesMode && target != start) {
     branch.assignments.push_back({*v.pc[planIndex], Expr::constant(static_cast<std::int32_t>(target))});
   }
-  if (branch.assignments.empty() && path.words.empty()) return;  // an idle loop changes nothing: no rule needed
-  rule.branches.push_back(std::move(branch));
-  std::string label;
-  for (const std::string& w : path.words) label += (label.empty() ? "" : ", ") + w;
-  rule.label = label.empty() ? "continues " + m_.services[first.service].name : label;
-  rule.weaklyFair = true;
   RuleMeaning meaning;
   meaning.kind = RuleMeaning::Kind::ProgramStep;
   meaning.robot = robot;
@@ -499,6 +494,17 @@ void Translator::finish(Index robot, std::size_t planIndex, std::size_t start, s
   meaning.actions = std::move(path.actions);
   meaning.guards = std::move(path.guards);
   meaning.effects = std::move(path.effects);
+  if (branch.assignments.empty() && path.words.empty()) {
+    // An idle loop changes nothing the model sees: no rule, but the robot still walks it (its calls
+    // run), and the runtime needs to know how.
+    lowering_.stutters.push_back(std::move(meaning));
+    return;
+  }
+  rule.branches.push_back(std::move(branch));
+  std::string label;
+  for (const std::string& w : path.words) label += (label.empty() ? "" : ", ") + w;
+  rule.label = label.empty() ? "continues " + m_.services[first.service].name : label;
+  rule.weaklyFair = true;
   addRule(std::move(rule), std::move(meaning));
 }
 
@@ -667,6 +673,7 @@ void Translator::effect(Index robot, std::size_t planIndex, const Instr& in, Pat
         }
       }
       path.effects.push_back({lowering::Effect::Kind::Publish, tp, 0, &s});
+      path.effects.back().value = value;
       path.words.push_back("publishes " + m_.teams[m_.topics[tp].owner].name + "." + m_.topics[tp].var);
       return out.push_back(std::move(path));
     }

@@ -25,6 +25,7 @@ void Translator::knowledgeRules() {
   for (const auto& [key, sites] : sites_) {
     const auto& [team, service] = key;
     const strategy::Service& sv = m_.strategy.services[sites.service];
+    if (sv.dissemination && sv.dissemination->via == "none") continue;  // nothing is shared: nothing is learnt
     for (Index q : m_.teams[team].robots) {
       for (Index r : m_.teams[team].robots) {
         if (q == r) continue;

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "semo/semantics/ir.hpp"
 
@@ -67,6 +68,19 @@ struct SdfOptions {
   std::optional<std::string> dotOut, sdf3Out;  // write the graph for Graphviz / in SDF3's format
 };
 
+struct SimulateOptions {
+  std::string mission, strategy;
+  std::optional<std::string> robotsDir, world;
+  std::string duration = "60s";
+  std::uint64_t seed = 1;
+  std::optional<std::uint64_t> seedsTo;  // --seeds A..B: seed is A
+  std::vector<std::string> crashes;      // ROBOT@TIME
+  double loss = 0;
+  std::string lossModel = "bernoulli";
+  std::optional<std::string> trace, svg;
+  bool checkConformance = false;
+};
+
 // Writes through a temporary file and renames it, so that a failure never leaves half a file.
 bool writeAtomically(const std::string& path, const std::string& text);
 
@@ -79,5 +93,6 @@ int runCheck(const CheckOptions& options);
 int runCheckSmt(const CheckOptions& options, const ir::Model& model);
 int runExport(const ExportOptions& options);
 int runLint(const LintOptions& options);
+int runSimulate(const SimulateOptions& options);
 
 }  // namespace semo::cli

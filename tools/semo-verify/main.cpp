@@ -90,6 +90,27 @@ int main(int argc, char** argv) {
   sdfCmd->add_option("--max-distributions", sdfOptions.maxDistributions,
                      "With --buffers: stop after this many buffer distributions (default 200000; exit 3, partial front)");
 
+  semo::cli::SimulateOptions simulate;
+  std::string seeds;
+  CLI::App* simulateCmd = app.add_subcommand("simulate", "Run the verified mission in the simulator (simulated time, injected crashes and "
+                                                         "message loss) and summarise what happened (specs/runtime.md)");
+  simulateCmd->add_option("mission", simulate.mission, "Mission file (.semo)")->required();
+  simulateCmd->add_option("--strategy,-s", simulate.strategy, "Strategy file (.xml)")->required();
+  simulateCmd->add_option("--robots,-r", simulate.robotsDir, "Folder of URDF files");
+  simulateCmd->add_option("--world,-w", simulate.world, "World file (runtime/WORLD.md; default: MISSION.world.json next to the mission)");
+  simulateCmd->add_option("--duration", simulate.duration, "Simulated time, e.g. 60s, 500ms, 2min (default 60s)");
+  simulateCmd->add_option("--seed", simulate.seed, "Seed of every random choice (the same seed gives the same trace, byte for byte; default 1)");
+  simulateCmd->add_option("--seeds", seeds, "Run seeds A..B (inclusive) and print statistics instead of one run's summary");
+  simulateCmd->add_option("--crash", simulate.crashes,
+                          "Crash a robot at a time: ROBOT@TIME, leader@TIME (whoever leads then) or leader:BLOCK@TIME; repeatable");
+  simulateCmd->add_option("--loss", simulate.loss, "Probability that a message is lost (messages the model lets be lost; default 0)")
+      ->check(CLI::Range(0.0, 1.0));
+  simulateCmd->add_option("--loss-model", simulate.lossModel, "How losses are spread: bernoulli (default), burst:N, gilbert:P,R");
+  simulateCmd->add_option("--trace", simulate.trace, "Write the run's trace as JSON (semo-simtrace)");
+  simulateCmd->add_option("--svg", simulate.svg, "Write a picture of the run: trajectories and a timeline per robot");
+  simulateCmd->add_flag("--check-conformance", simulate.checkConformance,
+                        "Replay every step on the verified model as it happens; stop at the first step the model does not allow");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -106,6 +127,28 @@ int main(int argc, char** argv) {
   if (*lintCmd) return semo::cli::runLint(lint);
   if (*checkCmd) return semo::cli::runCheck(check);
   if (*exportCmd) return semo::cli::runExport(exportOptions);
+  if (*simulateCmd) {
+    if (!seeds.empty()) {
+      const auto dots = seeds.find("..");
+      std::uint64_t from = 0, to = 0;
+      try {
+        if (dots == std::string::npos) throw std::invalid_argument(seeds);
+        std::size_t used = 0;
+        from = std::stoull(seeds.substr(0, dots), &used);
+        to = std::stoull(seeds.substr(dots + 2));
+      } catch (const std::exception&) {
+        std::cerr << "semo-verify: error: --seeds '" << seeds << "': expected A..B, e.g. 1..100\n";
+        return semo::cli::kBadInput;
+      }
+      if (to < from || to - from >= 1000000) {
+        std::cerr << "semo-verify: error: --seeds '" << seeds << "': B must be at least A, and at most a million runs\n";
+        return semo::cli::kBadInput;
+      }
+      simulate.seed = from;
+      simulate.seedsTo = to;
+    }
+    return semo::cli::runSimulate(simulate);
+  }
   if (*sdfCmd) {
     const int inputs = (sdfOptions.mission ? 1 : 0) + (sdfOptions.graphJson ? 1 : 0) + (sdfOptions.sdf3.empty() ? 0 : 1);
     if (inputs != 1) {

@@ -111,7 +111,8 @@ struct EffectRow {
   Kind kind = Kind::Throw;
   Id index = kNone;
   Id arm = kNone;
-  Operand value;  // Publish, Send
+  Id team = kNone;  // Publish: the team it goes to
+  Operand value;    // Publish: `number` is the value the model's slots get, `text` what is sent
 };
 
 struct Row {
@@ -129,7 +130,8 @@ struct PlanPoint {
   double loopPeriod = 0;  // the back edge of a periodic loop (`loop (D)`, `repeat (D)`): its period, seconds
   Id loopHead = kNone;    // on a back edge: the instruction the loop body starts at
   Id service = kNone;     // the service (MissionTables::services) this instruction belongs to
-  std::string label;      // "SearchPaper#7@24:5"
+  Id work = kNone;        // a group service call (MissionTables::calls): the robot works in it while it rests here
+  std::string label;      // "Search#7"
 };
 
 struct PlanTable {
@@ -222,43 +224,6 @@ struct LeaderBlockTable {
   std::vector<Id> heartbeatRule;  // IR rule per set of candidates whose heartbeat is lost (bit i: candidates[i])
 };
 
-// ------------------------------------------------------------------ dataflow (the robot's task graph)
-
-struct DataflowTask {
-  std::string name;
-  std::int64_t execMicros = 0;
-  bool control = false;
-};
-
-struct DataflowChannel {
-  std::string name;
-  Id from = 0, to = 0;
-  std::int64_t capacity = 0;  // proven bound (the largest over the scenarios that use it)
-};
-
-struct ScenarioTable {
-  std::string name;                   // "SEARCH_MODE", "RETREAT_MODE[walk]"
-  Id mode = kNone;
-  std::vector<std::string> services;  // running in it
-  struct Firing {
-    Id task = 0;
-    std::int64_t count = 1;
-  };
-  std::vector<Firing> schedule;  // one iteration
-  struct Channel {
-    Id channel = 0;
-    std::int64_t production = 1, consumption = 1, initialTokens = 0;
-  };
-  std::vector<Channel> channels;
-  std::int64_t periodMicros = 1000;  // time per iteration (self-timed, proven capacities)
-};
-
-struct DataflowTable {
-  std::vector<DataflowTask> tasks;
-  std::vector<DataflowChannel> channels;
-  std::vector<ScenarioTable> scenarios;
-};
-
 // ------------------------------------------------------------------ robots
 
 struct RobotTable {
@@ -268,7 +233,6 @@ struct RobotTable {
   std::vector<PlanTable> plans;  // per plan of the team (empty rows when it runs nothing)
   std::vector<Id> leaderBlocks;  // LeaderBlockTable indices it is a candidate of
   std::vector<Id> knowledge;     // KnowledgeTable indices of its team
-  DataflowTable dataflow;
   // The IR rules of the steps outside its program (kNone where the model has none):
   Id crashRule = kNone;
   std::vector<Id> eventDeliveryRule, eventLossRule;      // per event of the team
@@ -277,6 +241,7 @@ struct RobotTable {
   std::vector<Id> takeoverRule;                          // per entry of leaderBlocks
   struct Discover {
     Id knowledge = kNone, plan = kNone, pc = kNone, rule = kNone;
+    Id started = kNone;  // pc set of the synchronised start (GuardRow::GroupStarted), kNone: none
   };
   std::vector<Discover> discoverRules;
   // per entry of `knowledge`: [teacher * (facts + 1) + count] -> the rule "learns from teacher, now holds count"

@@ -111,6 +111,7 @@ struct Effect {
   Index index = model::kNone;
   std::size_t arm = 0;
   const model::Stmt* stmt = nullptr;
+  std::int32_t value = 0;  // Publish: the value the IR's message slots and views get (symbol + 1)
 
   Effect() = default;
   Effect(Kind k, Index what, std::size_t armIndex = 0, const model::Stmt* s = nullptr) : kind(k), index(what), arm(armIndex), stmt(s) {}
@@ -160,6 +161,9 @@ struct Lowering {
   std::vector<std::vector<PlanProgram>> programs;  // per team, per plan
   std::vector<VariableRole> variables;             // per IR variable
   std::vector<RuleMeaning> rules;                  // per IR rule
+  // Program walks that change nothing the model sees (an idle loop: `loop (1 SEC) display(x)`):
+  // no IR rule, but the running robot takes them (a stutter step).
+  std::vector<RuleMeaning> stutters;
 };
 
 }  // namespace semo::lowering

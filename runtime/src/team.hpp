@@ -1,0 +1,166 @@
+#pragma once
+// The running team inside the simulator: every robot's real state (modes, program counters, walks
+// under way, views, knowledge with its facts and stamps, leader beliefs, failure-detector counters),
+// the in-process network (events, message slots, reliable channels in flight) and the event queue.
+// Split by concern: team_steps.cpp (a robot's plan walks and the effects of its rows),
+// team_network.cpp (deliveries, losses, heartbeat periods, takeovers, gossip, crashes),
+// team_abstraction.cpp (the abstraction function), simulator.cpp (the event loop and the trace).
+#include <cstdint>
+#include <memory>
+#include <queue>
+#include <string>
+#include <vector>
+
+#include "semo/runtime/knowledge.hpp"
+#include "semo/runtime/random.hpp"
+#include "semo/runtime/simulator.hpp"
+
+namespace semo::runtime::detail {
+
+using Micros = std::int64_t;
+inline Micros toMicros(double seconds) { return static_cast<Micros>(seconds * 1e6 + (seconds >= 0 ? 0.5 : -0.5)); }
+inline double toSeconds(Micros t) { return static_cast<double>(t) / 1e6; }
+std::string formatSeconds(Micros t);  // "5.000000"
+
+// One plan of one robot: where it rests (its IR program counter) and the walk under way from there.
+struct PlanRun {
+  enum class Phase : std::uint8_t {
+    Ready,    // at a control point, about to start a walk
+    Period,   // at a periodic loop's back edge, waiting for the next iteration
+    Busy,     // a call or a wait of the walk is under way
+    Blocked,  // the walk is done but no row's guard holds: waits for the team to change
+    Idle,     // nothing to do here (no rows, or a group service point: see `working`)
+  };
+  Id pc = 0;
+  Phase phase = Phase::Ready;
+  std::uint32_t action = 0;        // the walk's next action
+  std::vector<std::uint8_t> keep;  // per row of pc: still a candidate
+  std::vector<Micros> iterationStart;  // per program counter (periodic loop back edges)
+  std::uint64_t generation = 0;    // bumps when the walk is abandoned (a wake-up of an old walk is ignored)
+  std::unique_ptr<Behaviour> behaviour;  // the call under way, or the group service worked in
+  Id behaviourCall = kNone;
+  BehaviourContext context;
+  bool working = false;            // in a group service with its group started
+  Micros busyUntil = 0;
+};
+
+struct RobotRun {
+  bool alive = true;
+  Id mode = 0;
+  std::vector<PlanRun> plans;
+  std::vector<std::uint8_t> eventPending;  // per event of the team
+  std::vector<std::int32_t> view;          // per topic (0 none, else symbol + 1)
+  std::vector<std::int32_t> message;       // per topic: the value on its way (0 none)
+  std::vector<std::uint8_t> leads;         // per leader block (MissionTables::leaderBlocks)
+  std::vector<std::int32_t> silence, lostRun;
+  std::vector<KnowledgeStore> knowledge;   // per entry of RobotTable::knowledge
+  std::uint64_t lamport = 0;
+  Vec2 destination;
+  std::string role;                        // for the trace
+};
+
+struct QueuedEvent {
+  enum class Kind : std::uint8_t { Wake, DeliverEvent, DeliverMessage, Heartbeat, Gossip, Crash, Control, Sample };
+  Micros t = 0;
+  std::uint64_t seq = 0;
+  Kind kind = Kind::Wake;
+  Id a = 0, b = 0;
+  std::uint64_t generation = 0;
+  bool operator>(const QueuedEvent& o) const { return t != o.t ? t > o.t : seq > o.seq; }
+};
+
+class Team {
+ public:
+  Team(const MissionTables& tables, const World& world, const TaskLibrary& library, const SimulationOptions& options,
+       StepObserver* observer, SimTrace& trace);
+  void run();
+
+ private:
+  // ---- team_steps.cpp
+  void startPlan(Id robot, Id plan, Id pc);
+  void advance(Id robot, Id plan);
+  bool commit(Id robot, Id plan);
+  bool guardsHold(Id robot, const Row& row) const;
+  bool testsHold(Id robot, const Row& row) const;
+  void applyEffects(Id robot, Id plan, const Row& row);
+  void enterMode(Id robot, Id mode);
+  void abandonWalk(Id robot, Id plan);
+  bool evaluate(Id robot, Id condition) const;
+  bool groupStarted(Id robot, Id plan, Id pcSet) const;
+  Id electedLeader(Id leaderBlock) const;  // the candidate the election picks now (kNone: none)
+  bool noLeader(Id leaderBlock) const;
+  void startCall(Id robot, Id plan, Id call);
+  void stepBehaviours();
+  void retryBlocked();
+  void afterStep(Id robot);
+  std::vector<std::string> callArgs(Id robot, Id call) const;
+  struct Reading {
+    bool isNumber = false;
+    double number = 0;
+    std::string_view symbol;
+  };
+  Reading read(Id robot, const Operand& o) const;
+  Reading sense(Id robot, Id sensed) const;
+
+  // ---- team_network.cpp
+  void throwEvent(Id robot, Id event);
+  void publish(Id robot, const EffectRow& e);
+  void deliverEvent(Id robot, Id event);
+  void deliverMessage(Id robot, Id topic);
+  void heartbeatPeriod(Id leaderBlock);
+  void takeovers(Id robot);
+  void gossip(Id knowledge);
+  void discover(Id robot, Id plan);
+  void crash(Id robot, const std::string& why);
+  void crashPlanned(Id crashPlan);
+  bool lose(Id kind, Id link, bool lossy, std::int64_t retransmissions);
+  bool waiting(Id robot, Id leaderBlock) const;
+  bool inService(Id robot, Id knowledge) const;
+  void leaderChange(Id leaderBlock, Id robot);
+  void convergence(Id knowledge);
+  Micros latency();
+
+  // ---- team_abstraction.cpp
+  void abstractState(std::vector<std::int32_t>& out) const;
+  // A step of the model: `rules` (IR rule indices; empty: a stutter) taken by `robot`.
+  void step(Id robot, std::vector<Id> rules, std::string what, std::string origin = {});
+  void beginStep();
+
+  // ---- simulator.cpp
+  void schedule(Micros t, QueuedEvent::Kind kind, Id a = 0, Id b = 0, std::uint64_t generation = 0);
+  void note(Id robot, TraceEvent::Kind kind, std::string label, std::string detail = {}, Id peer = kNone);
+  void samplePoses();
+  bool goalReached() const;
+  void summarise();
+  [[nodiscard]] double now() const { return toSeconds(now_); }
+
+  const MissionTables& t_;
+  const World& world_;
+  const TaskLibrary& library_;
+  const SimulationOptions& options_;
+  StepObserver* observer_;
+  SimTrace& trace_;
+  std::vector<RobotRun> robots_;
+  std::vector<Body> bodies_;
+  std::vector<Pose> poses_;
+  std::vector<bool> aliveFlags_;
+  std::vector<std::int32_t> channel_;  // per topic: values queued on its reliable channel
+  std::vector<std::int32_t> crashed_;  // per team
+  std::priority_queue<QueuedEvent, std::vector<QueuedEvent>, std::greater<>> queue_;
+  std::uint64_t seq_ = 0;
+  Micros now_ = 0;
+  RandomStream latency_, lossDraws_;
+  std::vector<LinkLoss> links_;  // per (kind, receiver) link
+  std::vector<std::int32_t> before_, after_;
+  bool stopped_ = false;
+  bool dirty_ = false;              // a step happened: blocked plans may go on
+  std::uint64_t zeroTimeSteps_ = 0;  // steps since time last moved (a loop that never lets time pass is an error)
+  bool outside_ = false;         // the run left the model's assumptions: conformance no longer claimed
+  std::vector<Id> leaderNow_;    // per leader block: the robot believed leader (for the summary)
+  std::vector<double> crashTime_;
+  std::vector<std::int32_t> scratchA_, scratchB_;
+  std::vector<std::uint8_t> scratchC_;
+  std::vector<std::int32_t> varSlot_;  // per IR variable of kind Knows: the robot's knowledge slot
+};
+
+}  // namespace semo::runtime::detail

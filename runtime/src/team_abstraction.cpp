@@ -1,0 +1,132 @@
+// The abstraction function (specs/runtime.md): the running team's state read as the IR's variables,
+// and the bookkeeping of every step (the trace's Step events with the variables they changed, the
+// observer's conformance check).
+#include <fmt/format.h>
+
+#include "team.hpp"
+
+namespace semo::runtime::detail {
+
+std::string formatSeconds(Micros t) { return fmt::format("{:.6f}", toSeconds(t)); }
+
+void Team::abstractState(std::vector<std::int32_t>& out) const {
+  out.resize(t_.abstraction.size());
+  for (std::size_t v = 0; v < t_.abstraction.size(); ++v) {
+    const AbstractVar& var = t_.abstraction[v];
+    using K = AbstractVar::Kind;
+    if (var.kind == K::Crashed) {
+      out[v] = crashed_[var.team];
+      continue;
+    }
+    const RobotRun& r = robots_[var.robot];
+    if (var.kind == K::Alive) {
+      out[v] = r.alive ? 1 : 0;
+      continue;
+    }
+    if (!r.alive) {  // a crashed robot's variables read as their initial values (the model clears them)
+      out[v] = var.init;
+      continue;
+    }
+    switch (var.kind) {
+      case K::Mode: out[v] = static_cast<std::int32_t>(r.mode); break;
+      case K::Pc: out[v] = static_cast<std::int32_t>(r.plans[var.index].pc); break;
+      case K::Event: out[v] = r.eventPending[var.index]; break;
+      case K::View: out[v] = r.view[var.index]; break;
+      case K::Message: out[v] = r.message[var.index]; break;
+      case K::Channel: out[v] = channel_[var.index]; break;
+      case K::Leads: out[v] = r.leads[var.index]; break;
+      case K::Silence: out[v] = r.silence[var.index]; break;
+      case K::LostHeartbeats: out[v] = r.lostRun[var.index]; break;
+      case K::Knows: out[v] = r.knowledge[static_cast<std::size_t>(varSlot_[v])].count(); break;
+      case K::Alive:
+      case K::Crashed: break;
+    }
+  }
+}
+
+void Team::beginStep() { abstractState(before_); }
+
+void Team::step(Id robot, std::vector<Id> rules, std::string what, std::string origin) {
+  abstractState(after_);
+  dirty_ = true;
+  TraceEvent e;
+  e.t = now();
+  e.robot = robot == kNone ? kNoRobot : robot;
+  e.kind = TraceEvent::Kind::Step;
+  for (Id rule : rules) e.rule += (e.rule.empty() ? "" : ",") + t_.rules[rule].name;
+  e.label = std::move(what);
+  e.origin = std::move(origin);
+  for (std::size_t v = 0; v < after_.size(); ++v) {
+    if (before_[v] != after_[v]) e.changes.push_back({t_.abstraction[v].name, before_[v], after_[v]});
+  }
+  if (observer_ != nullptr && !outside_) {
+    StepReport report;
+    report.t = e.t;
+    report.robot = e.robot;
+    report.rules = rules;
+    report.before = &before_;
+    report.after = &after_;
+    report.what = e.label;
+    ++trace_.summary.stepsChecked;
+    if (!observer_->onStep(report)) {
+      ++trace_.summary.mismatches;
+      stopped_ = true;
+      trace_.events.push_back(e);
+      note(robot, TraceEvent::Kind::Violation, observer_->why());
+      trace_.summary.violations.push_back(observer_->why());
+      return;
+    }
+  }
+  if (rules.empty() && e.changes.empty()) return;  // a stutter: nothing worth a line
+  trace_.events.push_back(std::move(e));
+}
+
+void Team::note(Id robot, TraceEvent::Kind kind, std::string label, std::string detail, Id peer) {
+  TraceEvent e;
+  e.t = now();
+  e.robot = robot == kNone ? kNoRobot : robot;
+  e.kind = kind;
+  e.label = std::move(label);
+  e.detail = std::move(detail);
+  e.peer = peer == kNone ? kNoRobot : peer;
+  trace_.events.push_back(std::move(e));
+}
+
+void Team::leaderChange(Id lb, Id robot) {
+  LeaderChange c;
+  c.block = t_.leaderBlocks[lb].name;
+  c.t = now();
+  c.from = leaderNow_[lb] == kNone ? kNoRobot : leaderNow_[lb];
+  c.to = robot;
+  if (leaderNow_[lb] != kNone && !robots_[leaderNow_[lb]].alive) c.sinceCrash = now() - crashTime_[leaderNow_[lb]];
+  if (leaderNow_[lb] == robot) return;
+  leaderNow_[lb] = robot;
+  trace_.summary.leaderChanges.push_back(c);
+}
+
+// The first time every live robot of the team that takes part (works in the service, or holds facts
+// of it) holds the same facts of the item, and some fact.
+void Team::convergence(Id k) {
+  auto& converged = trace_.summary.convergedAt;
+  const std::string& name = t_.knowledge[k].name;
+  for (const auto& [item, at] : converged) {
+    if (item == name && at >= 0) return;
+  }
+  const KnowledgeStore* first = nullptr;
+  for (Id q : t_.teams[t_.knowledge[k].team].robots) {
+    if (!robots_[q].alive) continue;
+    const std::vector<Id>& items = t_.robots[q].knowledge;
+    const auto slot = static_cast<std::size_t>(std::find(items.begin(), items.end(), k) - items.begin());
+    const KnowledgeStore& store = robots_[q].knowledge[slot];
+    if (store.count() == 0 && !inService(q, k)) continue;  // never took part: a Burger does not search papers
+    if (store.count() == 0) return;
+    if (first == nullptr) first = &store;
+    else if (!store.sameFactsAs(*first)) return;
+  }
+  if (first == nullptr) return;
+  for (auto& [item, at] : converged) {
+    if (item == name) at = now();
+  }
+}
+
+}  // namespace semo::runtime::detail

@@ -1,0 +1,183 @@
+// `simulate MISSION --strategy S [--world W]`: runs the verified mission's step tables in the
+// simulator (runtime/simulator.hpp), with crashes and message loss injected, and prints what
+// happened; --check-conformance replays every step on the IR as it happens.
+#include <algorithm>
+#include <charconv>
+#include <filesystem>
+#include <fmt/format.h>
+#include <iostream>
+#include <unistd.h>
+
+#include "commands.hpp"
+#include "semo/checker/conformance.hpp"
+#include "semo/checker/fingerprint.hpp"
+#include "semo/codegen/project.hpp"
+#include "semo/semantics/load.hpp"
+#include "semo/semantics/translate.hpp"
+
+namespace semo::cli {
+
+namespace {
+
+// "60s", "60", "500ms", "2min" -> seconds.
+std::optional<double> parseDuration(std::string_view text) {
+  double value = 0;
+  const auto r = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (r.ec != std::errc() || !(value >= 0)) return std::nullopt;
+  const std::string_view unit = text.substr(static_cast<std::size_t>(r.ptr - text.data()));
+  if (unit.empty() || unit == "s") return value;
+  if (unit == "ms") return value / 1000.0;
+  if (unit == "min") return value * 60.0;
+  return std::nullopt;
+}
+
+std::string robotName(const runtime::MissionTables& t, std::uint32_t r) { return r < t.robots.size() ? t.robots[r].name : "none"; }
+
+void printSummary(const runtime::MissionTables& t, const runtime::SimTrace& trace, bool checked) {
+  const runtime::TraceSummary& s = trace.summary;
+  std::cout << fmt::format("simulated {:.3f} s, seed {}; faults: {}\n", trace.duration, trace.seed, trace.faults);
+  if (s.completed) std::cout << fmt::format("  mission: completed at {:.3f} s{}\n", s.completedAt, s.goalStated ? " (the world's goal)" : " (every live robot finished)");
+  else std::cout << "  mission: not completed" << (s.goalStated ? " (the world's goal was not reached)" : "") << "\n";
+  std::cout << "  mode changes:";
+  std::size_t shown = 0;
+  for (const auto& [at, what] : s.modeChanges) {
+    if (shown++ == 12) {
+      std::cout << fmt::format(" ... ({} in all)", s.modeChanges.size());
+      break;
+    }
+    std::cout << fmt::format("{} {} at {:.3f} s", shown == 1 ? "" : ";", what, at);
+  }
+  std::cout << (s.modeChanges.empty() ? " none\n" : "\n");
+  for (const runtime::LeaderChange& c : s.leaderChanges) {
+    std::cout << fmt::format("  leader of {}: {} at {:.3f} s", c.block, robotName(t, c.to), c.t);
+    if (c.from != runtime::kNoRobot) std::cout << " (after " << robotName(t, c.from) << ")";
+    if (c.sinceCrash >= 0) std::cout << fmt::format(", {:.3f} s after {} crashed", c.sinceCrash, robotName(t, c.from));
+    std::cout << "\n";
+  }
+  for (const auto& [item, at] : s.convergedAt) {
+    if (at >= 0) std::cout << fmt::format("  knowledge {}: every live robot holds the same facts from {:.3f} s\n", item, at);
+    else std::cout << fmt::format("  knowledge {}: never the same at every live robot\n", item);
+  }
+  std::cout << fmt::format("  messages: {} sent, {} lost\n", s.messagesSent, s.messagesLost);
+  if (!s.outsideAssumptions.empty()) std::cout << "  outside the model's assumptions: " << s.outsideAssumptions << " (conformance no longer claimed from there)\n";
+  if (checked) {
+    std::cout << fmt::format("  conformance: {} steps replayed on the model, {}\n", s.stepsChecked,
+                             s.mismatches == 0 && s.violations.empty() ? "every one a step the model allows" : "MISMATCH");
+  }
+  for (const std::string& v : s.violations) std::cout << "  " << v << "\n";
+}
+
+}  // namespace
+
+int runSimulate(const SimulateOptions& options) {
+  SourceManager sources;
+  DiagnosticEngine diags(sources);
+  std::optional<model::MissionModel> mission = loadMission({options.mission, options.strategy, options.robotsDir}, sources, diags);
+  std::optional<Translation> translation;
+  if (mission) translation = translateMission(*mission, TranslationOptions{}, sources, diags);
+  for (const Diagnostic& d : diags.diagnostics()) std::cerr << diags.format(d);
+  if (!translation) return kBadInput;
+  runtime::MissionTables tables = codegen::project(*mission, *translation, sources);
+  tables.modelFingerprint = checker::modelFingerprint(translation->model);
+
+  std::string worldPath = options.world.value_or("");
+  if (worldPath.empty()) {
+    std::filesystem::path m(options.mission);
+    worldPath = (m.parent_path() / (m.stem().string() + ".world.json")).string();
+    if (!std::filesystem::exists(worldPath)) {
+      std::cerr << "semo-verify: error: no world given and no " << worldPath << " next to the mission; give one with --world (runtime/WORLD.md)\n";
+      return kBadInput;
+    }
+  }
+  std::vector<runtime::WorldError> worldErrors;
+  std::optional<runtime::World> world = runtime::readWorld(worldPath, worldErrors);
+  for (const runtime::WorldError& e : worldErrors) std::cerr << runtime::formatWorldError(e);
+  if (!world) return kBadInput;
+  std::vector<std::string> problems = runtime::checkWorld(tables, *world);
+  for (const std::string& p : problems) std::cerr << worldPath << ": error: " << p << "\n";
+  if (!problems.empty()) return kBadInput;
+
+  runtime::SimulationOptions sim;
+  auto duration = parseDuration(options.duration);
+  if (!duration || *duration <= 0 || *duration > 86400) {
+    std::cerr << "semo-verify: error: --duration '" << options.duration << "': expected a time such as 60s, 500ms or 2min (at most a day)\n";
+    return kBadInput;
+  }
+  sim.duration = *duration;
+  sim.loss = options.loss;
+  std::string error;
+  std::optional<runtime::LossModel> lossModel = runtime::LossModel::parse(options.lossModel, error);
+  if (!lossModel) {
+    std::cerr << "semo-verify: error: " << error << "\n";
+    return kBadInput;
+  }
+  sim.lossModel = *lossModel;
+  for (const std::string& c : options.crashes) {
+    const auto at = c.rfind('@');
+    std::optional<double> when = at == std::string::npos ? std::nullopt : parseDuration(std::string_view(c).substr(at + 1));
+    const std::string who = at == std::string::npos ? c : c.substr(0, at);
+    const bool known = who == "leader" || who.rfind("leader:", 0) == 0 ||
+                       std::any_of(tables.robots.begin(), tables.robots.end(), [&](const runtime::RobotTable& r) { return r.name == who; });
+    if (!when || !known) {
+      std::cerr << "semo-verify: error: --crash '" << c << "': expected ROBOT@TIME (a robot of the mission, or leader, or leader:BLOCK; e.g. ev3_1@5s)\n";
+      return kBadInput;
+    }
+    sim.crashes.push_back({who, *when});
+  }
+  if (options.seedsTo && (options.trace || options.svg)) {
+    std::cerr << "semo-verify: error: --trace and --svg describe one run: use --seed, not --seeds\n";
+    return kBadInput;
+  }
+  const runtime::TaskLibrary library = runtime::TaskLibrary::standard();
+  auto runOne = [&](std::uint64_t seed) {
+    sim.seed = seed;
+    std::optional<checker::ConformanceMonitor> monitor;
+    if (options.checkConformance) monitor.emplace(translation->model, tables);
+    runtime::SimTrace trace = runtime::simulate(tables, *world, library, sim, monitor ? &*monitor : nullptr);
+    trace.mission = options.mission;
+    trace.strategy = options.strategy;
+    return trace;
+  };
+
+  if (!options.seedsTo) {
+    runtime::SimTrace trace = runOne(options.seed);
+    printSummary(tables, trace, options.checkConformance);
+    if (options.trace && !writeAtomically(*options.trace, runtime::simTraceToJson(trace))) {
+      std::cerr << "semo-verify: error: cannot write '" << *options.trace << "'\n";
+      return kBadInput;
+    }
+    if (options.svg && !writeAtomically(*options.svg, runtime::renderSvg(trace))) {
+      std::cerr << "semo-verify: error: cannot write '" << *options.svg << "'\n";
+      return kBadInput;
+    }
+    return trace.summary.violations.empty() ? kOk : kViolated;
+  }
+
+  // Many seeds: one line of statistics per measure.
+  std::uint64_t completed = 0, mismatched = 0, outside = 0, runs = 0;
+  double completionSum = 0, completionMax = 0, takeoverMax = -1;
+  const bool progress = isatty(STDERR_FILENO) != 0;
+  for (std::uint64_t seed = options.seed; seed <= *options.seedsTo; ++seed, ++runs) {
+    runtime::SimTrace trace = runOne(seed);
+    const runtime::TraceSummary& s = trace.summary;
+    if (s.completed) ++completed, completionSum += s.completedAt, completionMax = std::max(completionMax, s.completedAt);
+    if (!s.violations.empty()) {
+      ++mismatched;
+      std::cout << "seed " << seed << ": " << s.violations.front() << "\n";
+    }
+    if (!s.outsideAssumptions.empty()) ++outside;
+    for (const runtime::LeaderChange& c : s.leaderChanges) takeoverMax = std::max(takeoverMax, c.sinceCrash);
+    if (progress) std::cerr << "\rseed " << seed << " (" << runs + 1 << " of " << *options.seedsTo - options.seed + 1 << ")" << std::flush;
+  }
+  if (progress) std::cerr << "\n";
+  std::cout << fmt::format("{} runs (seeds {}..{}), {:g} s each at most\n", runs, options.seed, *options.seedsTo, sim.duration);
+  std::cout << fmt::format("  mission completed: {} of {}", completed, runs);
+  if (completed > 0) std::cout << fmt::format(" (mean {:.3f} s, latest {:.3f} s)", completionSum / static_cast<double>(completed), completionMax);
+  std::cout << "\n";
+  if (takeoverMax >= 0) std::cout << fmt::format("  a crashed leader was replaced within {:.3f} s at worst\n", takeoverMax);
+  if (outside > 0) std::cout << fmt::format("  {} runs left the model's assumptions\n", outside);
+  if (options.checkConformance) std::cout << fmt::format("  conformance: {} runs with a mismatch or a violated property\n", mismatched);
+  return mismatched == 0 ? kOk : kViolated;
+}
+
+}  // namespace semo::cli
