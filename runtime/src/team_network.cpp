@@ -63,11 +63,13 @@ void Team::publish(Id robot, const EffectRow& e) {
   const TopicTable& topic = t_.topics[e.index];
   const auto value = static_cast<std::int32_t>(e.value.number);
   note(robot, TraceEvent::Kind::Send, "publishes " + topic.name, topic.name + " = " + e.value.text);
-  for (Id q : topic.subscribers) {
-    if (t_.robots[q].team != e.team) continue;
+  // To every robot of the team it is published to. The model keeps a view (and a message slot) only
+  // for robots whose conditions read the topic; the others (a display, a log) still get it, as
+  // steps the model does not see.
+  for (Id q : t_.teams[e.team].robots) {
     RobotRun& r = robots_[q];
     if (q == robot) {
-      r.view[e.index] = value;
+      if (std::find(topic.subscribers.begin(), topic.subscribers.end(), q) != topic.subscribers.end()) r.view[e.index] = value;
       continue;
     }
     if (!r.alive) continue;
@@ -83,17 +85,19 @@ void Team::deliverMessage(Id robot, Id topic) {
   if (!r.alive || r.message[topic] == 0) return;
   const RobotTable& table = t_.robots[robot];
   beginStep();
-  if (table.messageLossRule[topic] != kNone && lose(MessageLink, robot, t_.topics[topic].lossy, 0)) {
+  const Id lossRule = table.messageLossRule[topic], deliveryRule = table.messageDeliveryRule[topic];
+  const bool seen = deliveryRule != kNone;  // the model keeps this robot's view of the topic
+  if ((lossRule != kNone || !seen) && lose(MessageLink, robot, t_.topics[topic].lossy, 0)) {
     r.message[topic] = 0;
     ++trace_.summary.messagesLost;
     note(robot, TraceEvent::Kind::Drop, t_.topics[topic].name + " lost", t_.topics[topic].name);
-    step(robot, {table.messageLossRule[topic]}, t_.rules[table.messageLossRule[topic]].label);
+    step(robot, seen ? std::vector<Id>{lossRule} : std::vector<Id>{}, seen ? t_.rules[lossRule].label : "loses " + t_.topics[topic].name);
     return;
   }
   r.view[topic] = r.message[topic];
   r.message[topic] = 0;
   note(robot, TraceEvent::Kind::Deliver, t_.topics[topic].name, t_.topics[topic].name);
-  step(robot, {table.messageDeliveryRule[topic]}, t_.rules[table.messageDeliveryRule[topic]].label);
+  step(robot, seen ? std::vector<Id>{deliveryRule} : std::vector<Id>{}, seen ? t_.rules[deliveryRule].label : "receives " + t_.topics[topic].name);
   afterStep(robot);
 }
 

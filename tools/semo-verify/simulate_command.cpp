@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <iostream>
+#include <limits>
 #include <unistd.h>
 
 #include "commands.hpp"
@@ -29,6 +30,21 @@ std::optional<double> parseDuration(std::string_view text) {
   if (unit == "ms") return value / 1000.0;
   if (unit == "min") return value * 60.0;
   return std::nullopt;
+}
+
+// The closest any robot came to an obstacle over the run (metres; 0: it reached one), from the
+// trace's pose samples.
+// A robot whose centre is this close has its front on the obstacle: it has reached it.
+constexpr double kTouching = 0.12;
+
+double closestToObstacle(const runtime::SimTrace& trace) {
+  double closest = std::numeric_limits<double>::infinity();
+  for (const runtime::PoseSample& s : trace.poses) {
+    for (const runtime::Pose& p : s.poses) {
+      for (const runtime::Obstacle& o : trace.world.obstacles) closest = std::min(closest, o.shape.distance({p.x, p.y}));
+    }
+  }
+  return closest;
 }
 
 std::string robotName(const runtime::MissionTables& t, std::uint32_t r) { return r < t.robots.size() ? t.robots[r].name : "none"; }
@@ -59,6 +75,7 @@ void printSummary(const runtime::MissionTables& t, const runtime::SimTrace& trac
     else std::cout << fmt::format("  knowledge {}: never the same at every live robot\n", item);
   }
   std::cout << fmt::format("  messages: {} sent, {} lost\n", s.messagesSent, s.messagesLost);
+  if (!trace.world.obstacles.empty()) std::cout << fmt::format("  closest to an obstacle: {:.3f} m\n", closestToObstacle(trace));
   if (!s.outsideAssumptions.empty()) std::cout << "  outside the model's assumptions: " << s.outsideAssumptions << " (conformance no longer claimed from there)\n";
   if (checked) {
     std::cout << fmt::format("  conformance: {} steps replayed on the model, {}\n", s.stepsChecked,
@@ -156,6 +173,8 @@ int runSimulate(const SimulateOptions& options) {
   // Many seeds: one line of statistics per measure.
   std::uint64_t completed = 0, mismatched = 0, outside = 0, runs = 0;
   double completionSum = 0, completionMax = 0, takeoverMax = -1;
+  double closestMin = std::numeric_limits<double>::infinity(), closestMax = 0;
+  std::uint64_t reachedObstacle = 0;
   const bool progress = isatty(STDERR_FILENO) != 0;
   for (std::uint64_t seed = options.seed; seed <= *options.seedsTo; ++seed, ++runs) {
     runtime::SimTrace trace = runOne(seed);
@@ -166,6 +185,11 @@ int runSimulate(const SimulateOptions& options) {
       std::cout << "seed " << seed << ": " << s.violations.front() << "\n";
     }
     if (!s.outsideAssumptions.empty()) ++outside;
+    if (!trace.world.obstacles.empty()) {
+      const double closest = closestToObstacle(trace);
+      closestMin = std::min(closestMin, closest), closestMax = std::max(closestMax, closest);
+      if (closest <= kTouching) ++reachedObstacle;
+    }
     for (const runtime::LeaderChange& c : s.leaderChanges) takeoverMax = std::max(takeoverMax, c.sinceCrash);
     if (progress) std::cerr << "\rseed " << seed << " (" << runs + 1 << " of " << *options.seedsTo - options.seed + 1 << ")" << std::flush;
   }
@@ -175,6 +199,10 @@ int runSimulate(const SimulateOptions& options) {
   if (completed > 0) std::cout << fmt::format(" (mean {:.3f} s, latest {:.3f} s)", completionSum / static_cast<double>(completed), completionMax);
   std::cout << "\n";
   if (takeoverMax >= 0) std::cout << fmt::format("  a crashed leader was replaced within {:.3f} s at worst\n", takeoverMax);
+  if (closestMax > 0 || reachedObstacle > 0) {
+    std::cout << fmt::format("  closest to an obstacle: {:.3f} m at worst, {:.3f} m at best; {} runs where a robot reached one\n", closestMin,
+                             closestMax, reachedObstacle);
+  }
   if (outside > 0) std::cout << fmt::format("  {} runs left the model's assumptions\n", outside);
   if (options.checkConformance) std::cout << fmt::format("  conformance: {} runs with a mismatch or a violated property\n", mismatched);
   return mismatched == 0 ? kOk : kViolated;

@@ -1,0 +1,201 @@
+// End-to-end tests of `semo-verify simulate`: the real CLI on the paper's two experiments in
+// specs/examples, with conformance checked on every step, and the traces it writes read back.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exit = -1;
+  std::string out, err;
+};
+
+fs::path workDir(const std::string& name) {
+  fs::path dir = fs::path(SEMO_E2E_WORK) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs semo-verify with `args` (already quoted where needed), from the source tree.
+CliRun verify(const std::string& args, const fs::path& dir) {
+  const fs::path err = dir / "stderr.txt";
+  const std::string command = "cd '" SEMO_SOURCE_DIR "' && '" SEMO_VERIFY "' " + args + " 2>'" + err.string() + "'";
+  CliRun r;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return r;
+  std::array<char, 4096> buffer{};
+  std::size_t n = 0;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) r.out.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  r.exit = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.err = slurp(err);
+  return r;
+}
+
+double number(const std::string& text, const std::string& pattern) {
+  std::smatch m;
+  if (!std::regex_search(text, m, std::regex(pattern))) return -1;
+  return std::stod(m[1].str());
+}
+
+const std::string kScouting = "specs/examples/scouting/scouting.semo -s specs/examples/scouting/strategy.xml";
+const std::string kSwarm3 = "specs/examples/swarm/swarm3.semo -s specs/examples/swarm/strategy.xml";
+const std::string kSwarm10 = "specs/examples/swarm/swarm10.semo -s specs/examples/swarm/strategy.xml";
+
+// The paper's first experiment: the SlaveTeam's leader (an Ev3 in ReportPapers) crashes at 5 s.
+TEST(SimulateScouting, LeaderCrashIsRepairedOnEverySeed) {
+  const fs::path dir = workDir("scouting_seeds");
+  CliRun r = verify("simulate " + kScouting + " --crash leader@5s --loss 0.2 --check-conformance --seeds 1..100", dir);
+  ASSERT_EQ(r.exit, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("mission completed: 100 of 100"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("conformance: 0 runs with a mismatch"), std::string::npos) << r.out;
+  // The strategy: heartbeat every 500 ms, timeout 2 s; a new leader within timeout + one period.
+  const double worst = number(r.out, "replaced within ([0-9.]+) s at worst");
+  ASSERT_GE(worst, 0) << r.out;
+  EXPECT_LE(worst, 2.5);
+}
+
+TEST(SimulateScouting, ReportsReachTheMasterAfterTheTakeover) {
+  const fs::path dir = workDir("scouting_trace");
+  CliRun r = verify("simulate " + kScouting + " --crash leader@5s --check-conformance --seed 7 --trace '" + (dir / "t.json").string() + "'", dir);
+  ASSERT_EQ(r.exit, 0) << r.out << r.err;
+  const nlohmann::json trace = nlohmann::json::parse(slurp(dir / "t.json"));
+  double takeover = -1, crash = -1;
+  int reportsAfter = 0;
+  for (const auto& e : trace["events"]) {
+    const std::string kind = e["kind"], label = e.value("label", "");
+    const double t = e["t"];
+    if (kind == "crash") crash = t;
+    if (kind == "step" && label.find("takes over") != std::string::npos) takeover = t;
+    if (kind == "deliver" && e["robot"] == "irobot" && e.value("detail", "") == "SlaveTeam.paperReport" && takeover >= 0) ++reportsAfter;
+  }
+  EXPECT_DOUBLE_EQ(crash, 5.0);
+  ASSERT_GT(takeover, crash);
+  EXPECT_LE(takeover - crash, 2.5);
+  EXPECT_GE(reportsAfter, 2) << "the new leader's reports reach the master";
+  EXPECT_TRUE(trace["summary"]["completed"].get<bool>());
+}
+
+// The paper's second experiment: one robot sees the obstacle; knowledge sharing stops them all.
+void swarmStopsBeforeTheDitch(const std::string& mission, const std::string& name) {
+  const fs::path dir = workDir(name);
+  CliRun r = verify("simulate " + mission + " --loss 0.2 --check-conformance --seeds 1..100", dir);
+  ASSERT_EQ(r.exit, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("mission completed: 100 of 100"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("0 runs where a robot reached one"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("conformance: 0 runs with a mismatch"), std::string::npos) << r.out;
+  // And on positions, read back from one run's trace: every robot, every sample, west of the ditch.
+  CliRun one = verify("simulate " + mission + " --loss 0.2 --check-conformance --seed 3 --trace '" + (dir / "t.json").string() + "'", dir);
+  ASSERT_EQ(one.exit, 0) << one.out << one.err;
+  const nlohmann::json trace = nlohmann::json::parse(slurp(dir / "t.json"));
+  double eastmost = -1e9;
+  for (const auto& sample : trace["poses"]) {
+    for (const auto& pose : sample["robots"]) eastmost = std::max(eastmost, pose[0].get<double>());
+  }
+  EXPECT_LT(eastmost, 4.0 - 0.3) << "the ditch starts at x = 4";
+  EXPECT_GT(eastmost, 2.5) << "they did march";
+}
+
+TEST(SimulateSwarm, ThreeRobotsStopBeforeTheObstacle) { swarmStopsBeforeTheDitch(kSwarm3, "swarm3"); }
+TEST(SimulateSwarm, TenRobotsStopBeforeTheObstacle) { swarmStopsBeforeTheDitch(kSwarm10, "swarm10"); }
+
+TEST(SimulateSwarm, WithoutSharingARobotWalksIntoTheObstacle) {
+  const fs::path dir = workDir("swarm_no_sharing");
+  CliRun r = verify("simulate specs/examples/swarm/swarm3.semo -s specs/examples/swarm/strategy_no_sharing.xml --check-conformance "
+                 "--world specs/examples/swarm/swarm3.world.json --trace '" + (dir / "t.json").string() + "'",
+                 dir);
+  ASSERT_EQ(r.exit, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("mission: not completed"), std::string::npos) << r.out;
+  const nlohmann::json trace = nlohmann::json::parse(slurp(dir / "t.json"));
+  const auto& last = trace["poses"].back()["robots"];
+  int atTheDitch = 0;
+  for (const auto& pose : last) atTheDitch += pose[0].get<double>() > 4.0 - 0.12 ? 1 : 0;
+  EXPECT_GE(atTheDitch, 1) << trace["poses"].back().dump();
+}
+
+TEST(SimulateDeterminism, SameSeedSameTraceBytes) {
+  const fs::path dir = workDir("determinism");
+  const std::string base = "simulate " + kScouting + " --crash leader@5s --loss 0.3 --check-conformance ";
+  for (const char* name : {"a", "b"}) {
+    CliRun r = verify(base + "--seed 11 --trace '" + (dir / name).string() + ".json' --svg '" + (dir / name).string() + ".svg'", dir);
+    ASSERT_EQ(r.exit, 0) << r.out << r.err;
+  }
+  CliRun c = verify(base + "--seed 12 --trace '" + (dir / "c").string() + ".json'", dir);
+  ASSERT_EQ(c.exit, 0);
+  EXPECT_EQ(slurp(dir / "a.json"), slurp(dir / "b.json"));
+  EXPECT_EQ(slurp(dir / "a.svg"), slurp(dir / "b.svg"));
+  EXPECT_NE(slurp(dir / "a.json"), slurp(dir / "c.json")) << "another seed draws other latencies and losses";
+}
+
+TEST(SimulatePicture, RendersWithTrajectoriesTimelineAndCrash) {
+  const fs::path dir = workDir("picture");
+  CliRun r = verify("simulate " + kScouting + " --crash leader@5s --seed 1 --svg '" + (dir / "run.svg").string() + "'", dir);
+  ASSERT_EQ(r.exit, 0) << r.err;
+  const std::string svg = slurp(dir / "run.svg");
+  auto count = [&](const std::string& cls) {
+    std::size_t n = 0;
+    for (std::size_t at = svg.find("class=\"" + cls + "\""); at != std::string::npos; at = svg.find("class=\"" + cls + "\"", at + 1)) ++n;
+    return n;
+  };
+  EXPECT_EQ(count("trajectory"), 5u) << "one per robot";
+  EXPECT_GE(count("mode-band"), 8u);
+  EXPECT_GE(count("crash"), 1u);
+  EXPECT_GE(count("fact-site"), 3u);
+  if (std::string(SEMO_RSVG_CONVERT).empty()) GTEST_SKIP() << "rsvg-convert is not installed";
+  const fs::path png = dir / "run.png";
+  const std::string command = "'" SEMO_RSVG_CONVERT "' -w 1000 '" + (dir / "run.svg").string() + "' -o '" + png.string() + "'";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  const std::string bytes = slurp(png);
+  ASSERT_GT(bytes.size(), 24u);
+  EXPECT_EQ(bytes.substr(1, 3), "PNG");
+  const auto be32 = [&](std::size_t at) {
+    return (static_cast<unsigned>(static_cast<unsigned char>(bytes[at])) << 24) | (static_cast<unsigned>(static_cast<unsigned char>(bytes[at + 1])) << 16) |
+           (static_cast<unsigned>(static_cast<unsigned char>(bytes[at + 2])) << 8) | static_cast<unsigned>(static_cast<unsigned char>(bytes[at + 3]));
+  };
+  EXPECT_EQ(be32(16), 1000u);  // IHDR width
+  EXPECT_GT(be32(20), 500u);   // height: the world and the timeline
+}
+
+TEST(SimulateBadInput, PositionedErrorsAndNothingWritten) {
+  const fs::path dir = workDir("bad_input");
+  {
+    std::ofstream(dir / "bad.world.json") << "{\n  \"format\": \"semo-world\", \"version\": 1,\n  \"places\": {\"base camp\": [1]}\n}\n";
+  }
+  CliRun r = verify("simulate " + kScouting + " --world '" + (dir / "bad.world.json").string() + "' --trace '" + (dir / "t.json").string() + "'", dir);
+  EXPECT_EQ(r.exit, 2);
+  EXPECT_TRUE(std::regex_search(r.err, std::regex("bad\\.world\\.json:3:[0-9]+: error: "))) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "t.json"));
+  CliRun crash = verify("simulate " + kScouting + " --crash nobody@5s --trace '" + (dir / "t.json").string() + "'", dir);
+  EXPECT_EQ(crash.exit, 2);
+  EXPECT_NE(crash.err.find("--crash 'nobody@5s'"), std::string::npos) << crash.err;
+  EXPECT_FALSE(fs::exists(dir / "t.json"));
+  // A world without the places the mission drives to is refused before anything runs.
+  {
+    std::ofstream(dir / "empty.world.json") << "{\"format\": \"semo-world\", \"version\": 1}\n";
+  }
+  CliRun empty = verify("simulate " + kScouting + " --world '" + (dir / "empty.world.json").string() + "'", dir);
+  EXPECT_EQ(empty.exit, 2);
+  EXPECT_NE(empty.err.find("names a place the world does not have"), std::string::npos) << empty.err;
+  EXPECT_NE(empty.err.find("no start pose for robot ev3_0"), std::string::npos) << empty.err;
+}
+
+}  // namespace
