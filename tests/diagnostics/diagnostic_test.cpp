@@ -4,6 +4,8 @@
 //   # expected-error@+1:7 {{undefined mode 'SEARCH'}}      (mission files, in a comment)
 //   <!-- expected-warning@+1:3 {{timeout}} -->             (strategy and URDF files)
 //
+//   "_expect": ["expected-error@4:35 {{a point is [x, y]}}"]  (world files: a comment member)
+//
 // `@+N` / `@-N` are relative to the annotation's line, `@N` is absolute; `:COL` is the exact column.
 // The text in {{ }} must occur in the message. Every error and warning reported in the annotated file
 // must be expected, and every expectation must be met. Directives choose the companion files:
@@ -18,6 +20,7 @@
 #include <sstream>
 
 #include "semo/frontend/robot_catalog.hpp"
+#include "semo/runtime/world.hpp"
 #include "semo/sdf/sdf3_xml.hpp"
 #include "semo/sdf/task_graph_io.hpp"
 #include "semo/semantics/load.hpp"
@@ -70,7 +73,7 @@ const char* name(semo::Severity s) {
 
 std::vector<fs::path> cases() {
   std::vector<fs::path> out;
-  for (const char* folder : {"mission", "strategy", "urdf", "sdf3", "taskgraph"}) {
+  for (const char* folder : {"mission", "strategy", "urdf", "sdf3", "taskgraph", "world"}) {
     fs::path dir = fs::path(SEMO_DIAGNOSTICS_DIR) / folder;
     if (!fs::exists(dir)) continue;
     for (const auto& entry : fs::directory_iterator(dir)) out.push_back(entry.path());
@@ -87,9 +90,30 @@ TEST_P(DiagnosticCase, ReportsExactlyTheExpectedDiagnostics) {
   std::vector<Expectation> expected = readExpectations(text);
   ASSERT_FALSE(expected.empty()) << file << " has no expected-error/expected-warning annotation";
 
+  std::string kind = file.parent_path().filename().string();
+  if (kind == "world") {
+    // The runtime's world reader reports WorldErrors (the runtime links nothing of semo's diagnostics).
+    std::vector<semo::runtime::WorldError> errors;
+    EXPECT_FALSE(semo::runtime::readWorld(file.string(), errors).has_value()) << "a malformed world must not be returned";
+    for (const semo::runtime::WorldError& d : errors) {
+      bool matched = false;
+      for (Expectation& e : expected) {
+        if (e.met || e.severity != semo::Severity::Error || e.line != d.line || e.column != d.column) continue;
+        if (d.message.find(e.text) == std::string::npos) continue;
+        e.met = matched = true;
+        break;
+      }
+      if (!matched) ADD_FAILURE() << "unexpected diagnostic:\n" << semo::runtime::formatWorldError(d);
+    }
+    for (const Expectation& e : expected) {
+      EXPECT_TRUE(e.met) << file.filename().string() << ": expected error at " << e.line << ":" << e.column << " containing '" << e.text
+                         << "' was not reported";
+    }
+    return;
+  }
+
   semo::SourceManager sources;
   semo::DiagnosticEngine diags(sources);
-  std::string kind = file.parent_path().filename().string();
   fs::path dir = file.parent_path();
   if (kind == "mission") {
     fs::path strategy = dir / directive(text, "strategy", "../common/strategy.xml");
