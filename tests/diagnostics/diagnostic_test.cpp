@@ -9,6 +9,10 @@
 // must be expected, and every expectation must be met. Directives choose the companion files:
 //   # strategy: ../common/strategy.xml      (mission cases; this is the default)
 //   <!-- mission: ../common/mission.semo --> (strategy cases; this is the default)
+// Trace cases (trace/*.json, read back with checker/trace_reader.hpp) name the model to replay on
+// with members the reader ignores: "_model" (a mission or an .ir file, relative to the case),
+// "_strategy" (default: strategy.xml beside the mission) and "_property" (which counterexample of a
+// check output; default the first). Their expectations are in an "_expect" string, as for task graphs.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,10 +21,13 @@
 #include <regex>
 #include <sstream>
 
+#include "semo/checker/trace_reader.hpp"
 #include "semo/frontend/robot_catalog.hpp"
 #include "semo/sdf/sdf3_xml.hpp"
 #include "semo/sdf/task_graph_io.hpp"
+#include "semo/semantics/ir_text.hpp"
 #include "semo/semantics/load.hpp"
+#include "semo/semantics/translate.hpp"
 
 namespace fs = std::filesystem;
 
@@ -64,13 +71,40 @@ std::string directive(const std::string& text, const std::string& key, const std
   return std::regex_search(text, m, pattern) ? m[1].str() : fallback;
 }
 
+// A trace case's "_key": "value" member.
+std::string jsonDirective(const std::string& text, const std::string& key, const std::string& fallback) {
+  std::smatch m;
+  std::regex pattern("\"_" + key + R"re("\s*:\s*"([^"]*)")re");
+  return std::regex_search(text, m, pattern) ? m[1].str() : fallback;
+}
+
+// The model a trace case is replayed on: an IR file, or a mission translated with its strategy.
+std::optional<semo::ir::Model> traceModel(const fs::path& file, const std::string& text, semo::SourceManager& sources,
+                                          semo::DiagnosticEngine& diags) {
+  fs::path model = (file.parent_path() / jsonDirective(text, "model", "")).lexically_normal();
+  if (model.extension() == ".ir") {
+    std::string error;
+    semo::FileId id = sources.load(model.string(), error);
+    if (id == semo::kNoFile) {
+      ADD_FAILURE() << error;
+      return std::nullopt;
+    }
+    return semo::ir::parseText(sources, id, diags);
+  }
+  fs::path strategy = jsonDirective(text, "strategy", "").empty() ? model.parent_path() / "strategy.xml"
+                                                                  : file.parent_path() / jsonDirective(text, "strategy", "");
+  auto mission = semo::loadMission({model.string(), strategy.lexically_normal().string(), std::nullopt}, sources, diags);
+  if (!mission) return std::nullopt;
+  return semo::translate(*mission, {}, sources, diags);
+}
+
 const char* name(semo::Severity s) {
   return s == semo::Severity::Error ? "error" : s == semo::Severity::Warning ? "warning" : "note";
 }
 
 std::vector<fs::path> cases() {
   std::vector<fs::path> out;
-  for (const char* folder : {"mission", "strategy", "urdf", "sdf3", "taskgraph"}) {
+  for (const char* folder : {"mission", "strategy", "urdf", "sdf3", "taskgraph", "trace"}) {
     fs::path dir = fs::path(SEMO_DIAGNOSTICS_DIR) / folder;
     if (!fs::exists(dir)) continue;
     for (const auto& entry : fs::directory_iterator(dir)) out.push_back(entry.path());
@@ -107,6 +141,15 @@ TEST_P(DiagnosticCase, ReportsExactlyTheExpectedDiagnostics) {
     semo::FileId id = sources.load(file.string(), error);
     ASSERT_TRUE(error.empty()) << error;
     EXPECT_FALSE(semo::sdf::readTaskGraphJson(sources, id, diags).has_value()) << "a malformed task graph must not be returned";
+  } else if (kind == "trace") {
+    std::optional<semo::ir::Model> model = traceModel(file, text, sources, diags);
+    ASSERT_TRUE(model.has_value()) << file << ": its \"_model\" does not load";
+    std::string error;
+    semo::FileId id = sources.load(file.string(), error);
+    ASSERT_TRUE(error.empty()) << error;
+    semo::checker::TraceReadOptions options;
+    options.property = jsonDirective(text, "property", "");
+    EXPECT_FALSE(semo::checker::readTrace(sources, id, *model, diags, options).has_value()) << "a trace with errors must not be returned";
   } else {
     semo::loadRobotType(sources, file.string(), {}, diags);
   }
