@@ -326,37 +326,59 @@ class Reader {
       branch = static_cast<std::size_t>(integer(*b, at + "/branch", "branch", 0, static_cast<std::int64_t>(outcomes) - 1));
     }
 
-    // The state the step records: the one reached, with its changes.
-    std::optional<Stepper::State> recorded;
-    if (const json* changes = optionalMember(s, at, "changes")) {
-      if (!changes->is_array()) fail(at + "/changes", "\"changes\" must be an array");
-      recorded = state;
+    // The changes the step records, read first; checked against the state reached once the rule
+    // is known to be enabled there.
+    struct Recorded {
+      std::size_t var;
+      std::int32_t from, to;
+      std::string at;
+    };
+    std::optional<std::vector<Recorded>> changes;
+    if (const json* list = optionalMember(s, at, "changes")) {
+      if (!list->is_array()) fail(at + "/changes", "\"changes\" must be an array");
+      changes.emplace();
       std::set<std::size_t> seen;
-      for (std::size_t j = 0; j < changes->size(); ++j) {
+      for (std::size_t j = 0; j < list->size(); ++j) {
         const std::string cp = at + "/changes/" + std::to_string(j);
-        const json& c = (*changes)[j];
+        const json& c = (*list)[j];
         const std::string varName = string(member(c, cp, "var", "the variable it changes"), cp + "/var", "var");
         auto var = varIndex_.find(varName);
         if (var == varIndex_.end()) fail(cp + "/var", withSuggestion(number + ": unknown variable " + inQuotes(varName), varName, varNames_));
         if (!seen.insert(var->second).second) fail(cp + "/var", number + " changes " + varName + " twice");
         const std::int32_t from = value(member(c, cp, "from", "the value before the step"), cp + "/from", "from");
         const std::int32_t to = value(member(c, cp, "to", "the value after the step"), cp + "/to", "to");
-        if (from != state[var->second]) {
-          fail(cp + "/from", number + " changes " + varName + " from " + std::to_string(from) + ", but " + varName + " is " +
-                                 std::to_string(state[var->second]) + " in the state reached");
-        }
-        (*recorded)[var->second] = to;
+        changes->push_back({var->second, from, to, cp});
       }
     }
 
     if (!stepper_.enabled(state, rule)) {
       std::string message = number + ": rule " + inQuotes(name) + " is not enabled in the state reached";
-      if (recorded) {
-        std::string change = stepper_.describeDifference(state, *recorded);
-        message += change.empty() ? "; the trace has it change nothing" : "; the trace has it change " + change;
-        if (auto other = stepper_.findRule(state, *recorded)) message += " (rule " + inQuotes(model_.rules[*other].name) + " would)";
+      if (changes) {
+        std::string said;
+        Stepper::State target = state;
+        for (const Recorded& c : *changes) {
+          const ir::Variable& v = model_.variables[c.var];
+          said += (said.empty() ? "" : ", ") + v.name + ": " + valueText(v, c.from) + " -> " + valueText(v, c.to);
+          target[c.var] = c.to;
+        }
+        message += said.empty() ? "; the trace has it change nothing" : "; the trace has it change " + said;
+        if (auto other = stepper_.findRule(state, target)) message += " (rule " + inQuotes(model_.rules[*other].name) + " would)";
       }
       fail(at + "/rule", message);
+    }
+
+    // The state the step records: the one reached, with its changes.
+    std::optional<Stepper::State> recorded;
+    if (changes) {
+      recorded = state;
+      for (const Recorded& c : *changes) {
+        if (c.from != state[c.var]) {
+          const ir::Variable& v = model_.variables[c.var];
+          fail(c.at + "/from", number + " changes " + v.name + " from " + valueText(v, c.from) + ", but " + v.name + " is " +
+                                   valueText(v, state[c.var]) + " in the state reached");
+        }
+        (*recorded)[c.var] = c.to;
+      }
     }
 
     // The outcome the step takes: the one given, or the first that fits what the step records.

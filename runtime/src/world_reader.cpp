@@ -3,6 +3,7 @@
 // a duplicate member or an overflowing number is. Every later check points at the value at fault
 // through JsonPositions. The reader goes on after an error wherever the rest of the file still
 // makes sense, so that one run reports every mistake; it never returns a World with an error.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -15,35 +16,19 @@
 
 #include "semo/runtime/json_positions.hpp"
 #include "semo/runtime/world.hpp"
+#include "world_scan.hpp"
 
 namespace semo::runtime {
 
 namespace {
 
 using nlohmann::json;
+using detail::errorAt;
+using detail::isComment;
+using detail::PreScan;
+using detail::preScan;
 
-constexpr std::size_t kMaxDepth = 64;
 constexpr const char* kSensors[] = {"at_destination", "not_at_destination", "touching_obstacle", "obstacle_ahead"};
-
-// Line and column (1-based, columns count bytes as everywhere in semo) of a byte offset, with the line's text.
-WorldError errorAt(std::string_view text, const std::string& path, std::size_t offset, std::string message) {
-  WorldError e{path, 1, 1, std::move(message), ""};
-  std::size_t lineStart = 0;
-  for (std::size_t i = 0; i < offset && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++e.line;
-      e.column = 1;
-      lineStart = i + 1;
-    } else {
-      ++e.column;
-    }
-  }
-  std::size_t lineEnd = text.find('\n', std::min(lineStart, text.size()));
-  if (lineEnd == std::string_view::npos) lineEnd = text.size();
-  e.lineText = std::string(text.substr(std::min(lineStart, text.size()), lineEnd - std::min(lineStart, text.size())));
-  if (!e.lineText.empty() && e.lineText.back() == '\r') e.lineText.pop_back();
-  return e;
-}
 
 std::string pointerKey(const std::string& key) {
   std::string out;
@@ -51,58 +36,6 @@ std::string pointerKey(const std::string& key) {
   return out;
 }
 
-bool isComment(const std::string& key) { return !key.empty() && key.front() == '_'; }
-
-// What nlohmann cannot tell with a position: nesting beyond kMaxDepth (found before parsing, so a
-// depth bomb never reaches the recursive parts of the library), members given twice in one object
-// (the parser silently keeps the last) and numbers no double holds. The text may be anything: the
-// scan only reads within bounds and reports what it recognises.
-struct PreScan {
-  std::vector<std::pair<std::size_t, std::string>> problems;  // offset, message
-  bool tooDeep = false;
-};
-
-PreScan preScan(std::string_view t) {
-  PreScan out;
-  struct Frame {
-    bool object;
-    bool expectKey;
-    std::set<std::string> keys;
-  };
-  std::vector<Frame> stack;
-  for (std::size_t i = 0; i < t.size(); ++i) {
-    const char c = t[i];
-    if (c == '{' || c == '[') {
-      if (stack.size() == kMaxDepth) {
-        out.problems = {{i, "nesting deeper than " + std::to_string(kMaxDepth) + " levels"}};
-        out.tooDeep = true;
-        return out;
-      }
-      stack.push_back({c == '{', c == '{', {}});
-    } else if (c == '}' || c == ']') {
-      if (!stack.empty()) stack.pop_back();
-    } else if (c == ',') {
-      if (!stack.empty() && stack.back().object) stack.back().expectKey = true;
-    } else if (c == '"') {
-      const std::size_t start = i;
-      std::string s;
-      for (++i; i < t.size() && t[i] != '"'; ++i) {
-        if (t[i] == '\\' && i + 1 < t.size()) ++i;  // the escaped character stands for itself (\uXXXX stays as written)
-        s += t[i];
-      }
-      if (!stack.empty() && stack.back().expectKey) {
-        stack.back().expectKey = false;
-        if (!stack.back().keys.insert(s).second && !isComment(s)) out.problems.push_back({start, "member '" + s + "' given twice"});
-      }
-    } else if (c == '-' || (c >= '0' && c <= '9')) {
-      const std::size_t start = i;
-      while (i + 1 < t.size() && std::string_view("0123456789+-.eE").find(t[i + 1]) != std::string_view::npos) ++i;
-      const std::string number(t.substr(start, i - start + 1));
-      if (!std::isfinite(std::strtod(number.c_str(), nullptr))) out.problems.push_back({start, "number " + number + " is out of range"});
-    }
-  }
-  return out;
-}
 
 class Reader {
  public:
@@ -111,13 +44,14 @@ class Reader {
 
   void read(const json& root) {
     if (!root.is_object()) return error("", "a world file is a JSON object");
-    members(root, "", "the world", {"format", "version", "arena", "places", "robots", "obstacles", "facts", "values", "goal"});
     auto format = root.find("format");
     if (format == root.end() || *format != "semo-world") return error(format == root.end() ? "" : "/format", "\"format\" must be \"semo-world\"");
     auto version = root.find("version");
     if (version == root.end() || !version->is_number_integer() || *version != 1) {
       return error(version == root.end() ? "" : "/version", "unsupported world version (this semo reads \"version\": 1)");
     }
+    // Checked only once the file says it is a world: another format's members are not worth listing.
+    members(root, "", "the world", {"format", "version", "arena", "places", "robots", "obstacles", "facts", "values", "goal"});
     world_.path = path_;
     if (auto it = root.find("arena"); it != root.end()) arena(*it, "/arena");
     if (const json* o = object(root, "", "places")) {
@@ -150,7 +84,16 @@ class Reader {
     }
   }
 
-  World take() { return std::move(world_); }
+  // nlohmann::json keeps an object's members sorted by key: put the named entries back in file order.
+  World take() {
+    auto byPosition = [](const auto& a, const auto& b) {
+      return std::pair(a.written.line, a.written.column) < std::pair(b.written.line, b.written.column);
+    };
+    std::stable_sort(world_.places.begin(), world_.places.end(), byPosition);
+    std::stable_sort(world_.starts.begin(), world_.starts.end(), byPosition);
+    std::stable_sort(world_.values.begin(), world_.values.end(), byPosition);
+    return std::move(world_);
+  }
 
  private:
   std::string_view text_;
@@ -529,17 +472,6 @@ class Reader {
 
 }  // namespace
 
-std::string formatWorldError(const WorldError& e) {
-  std::string out = e.file;
-  if (e.line != 0) out += ":" + std::to_string(e.line) + ":" + std::to_string(std::max<std::size_t>(e.column, 1));
-  out += ": error: " + e.message + "\n";
-  if (e.line == 0 || e.lineText.empty()) return out;
-  out += e.lineText + "\n";
-  // Keep tabs so that the caret lines up under the same column as the line above.
-  for (std::size_t i = 1; i < e.column && i - 1 < e.lineText.size(); ++i) out += e.lineText[i - 1] == '\t' ? '\t' : ' ';
-  return out + "^\n";
-}
-
 std::optional<World> parseWorld(std::string_view text, const std::string& path, std::vector<WorldError>& errors) {
   const std::size_t before = errors.size();
   // The JSON parser would stop at a NUL byte and ignore what follows it.
@@ -575,8 +507,12 @@ std::optional<World> parseWorld(std::string_view text, const std::string& path, 
   } catch (const json::exception& e) {  // a check above missed a type: report it rather than crash
     errors.push_back(errorAt(text, path, 0, std::string("unexpected JSON content: ") + e.what()));
   }
-  if (errors.size() != before) return std::nullopt;
-  return reader.take();
+  if (errors.size() == before) return reader.take();
+  // Members of an object are visited in key order: report in file order.
+  std::stable_sort(errors.begin() + static_cast<std::ptrdiff_t>(before), errors.end(), [](const WorldError& a, const WorldError& b) {
+    return std::pair(a.line, a.column) < std::pair(b.line, b.column);
+  });
+  return std::nullopt;
 }
 
 std::optional<World> readWorld(const std::string& path, std::vector<WorldError>& errors) {

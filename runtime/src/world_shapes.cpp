@@ -60,7 +60,7 @@ double Shape::distance(Vec2 p) const {
   return d <= kOnEdge ? 0 : d;
 }
 
-// Worlds are small (tens of entries): a linear search keeps the structs plain vectors, in file order.
+// Worlds are small (tens of entries): a linear search keeps the structs plain vectors in file order.
 const Place* World::place(std::string_view name) const {
   for (const Place& p : places) {
     if (p.name == name) return &p;

@@ -4,11 +4,17 @@
 //   # expected-error@+1:7 {{undefined mode 'SEARCH'}}      (mission files, in a comment)
 //   <!-- expected-warning@+1:3 {{timeout}} -->             (strategy and URDF files)
 //
+//   "_expect": ["expected-error@4:35 {{a point is [x, y]}}"]  (world files: a comment member)
+//
 // `@+N` / `@-N` are relative to the annotation's line, `@N` is absolute; `:COL` is the exact column.
 // The text in {{ }} must occur in the message. Every error and warning reported in the annotated file
 // must be expected, and every expectation must be met. Directives choose the companion files:
 //   # strategy: ../common/strategy.xml      (mission cases; this is the default)
 //   <!-- mission: ../common/mission.semo --> (strategy cases; this is the default)
+// Trace cases (trace/*.json, read back with checker/trace_reader.hpp) name the model to replay on
+// with members the reader ignores: "_model" (a mission or an .ir file, relative to the case),
+// "_strategy" (default: strategy.xml beside the mission) and "_property" (which counterexample of a
+// check output; default the first). Their expectations are in an "_expect" string, as for task graphs.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,10 +23,14 @@
 #include <regex>
 #include <sstream>
 
+#include "semo/checker/trace_reader.hpp"
 #include "semo/frontend/robot_catalog.hpp"
+#include "semo/runtime/world.hpp"
 #include "semo/sdf/sdf3_xml.hpp"
 #include "semo/sdf/task_graph_io.hpp"
+#include "semo/semantics/ir_text.hpp"
 #include "semo/semantics/load.hpp"
+#include "semo/semantics/translate.hpp"
 
 namespace fs = std::filesystem;
 
@@ -64,13 +74,40 @@ std::string directive(const std::string& text, const std::string& key, const std
   return std::regex_search(text, m, pattern) ? m[1].str() : fallback;
 }
 
+// A trace case's "_key": "value" member.
+std::string jsonDirective(const std::string& text, const std::string& key, const std::string& fallback) {
+  std::smatch m;
+  std::regex pattern("\"_" + key + R"re("\s*:\s*"([^"]*)")re");
+  return std::regex_search(text, m, pattern) ? m[1].str() : fallback;
+}
+
+// The model a trace case is replayed on: an IR file, or a mission translated with its strategy.
+std::optional<semo::ir::Model> traceModel(const fs::path& file, const std::string& text, semo::SourceManager& sources,
+                                          semo::DiagnosticEngine& diags) {
+  fs::path model = (file.parent_path() / jsonDirective(text, "model", "")).lexically_normal();
+  if (model.extension() == ".ir") {
+    std::string error;
+    semo::FileId id = sources.load(model.string(), error);
+    if (id == semo::kNoFile) {
+      ADD_FAILURE() << error;
+      return std::nullopt;
+    }
+    return semo::ir::parseText(sources, id, diags);
+  }
+  fs::path strategy = jsonDirective(text, "strategy", "").empty() ? model.parent_path() / "strategy.xml"
+                                                                  : file.parent_path() / jsonDirective(text, "strategy", "");
+  auto mission = semo::loadMission({model.string(), strategy.lexically_normal().string(), std::nullopt}, sources, diags);
+  if (!mission) return std::nullopt;
+  return semo::translate(*mission, {}, sources, diags);
+}
+
 const char* name(semo::Severity s) {
   return s == semo::Severity::Error ? "error" : s == semo::Severity::Warning ? "warning" : "note";
 }
 
 std::vector<fs::path> cases() {
   std::vector<fs::path> out;
-  for (const char* folder : {"mission", "strategy", "urdf", "sdf3", "taskgraph"}) {
+  for (const char* folder : {"mission", "strategy", "urdf", "sdf3", "taskgraph", "world", "trace"}) {
     fs::path dir = fs::path(SEMO_DIAGNOSTICS_DIR) / folder;
     if (!fs::exists(dir)) continue;
     for (const auto& entry : fs::directory_iterator(dir)) out.push_back(entry.path());
@@ -87,9 +124,30 @@ TEST_P(DiagnosticCase, ReportsExactlyTheExpectedDiagnostics) {
   std::vector<Expectation> expected = readExpectations(text);
   ASSERT_FALSE(expected.empty()) << file << " has no expected-error/expected-warning annotation";
 
+  std::string kind = file.parent_path().filename().string();
+  if (kind == "world") {
+    // The runtime's world reader reports WorldErrors (the runtime links nothing of semo's diagnostics).
+    std::vector<semo::runtime::WorldError> errors;
+    EXPECT_FALSE(semo::runtime::readWorld(file.string(), errors).has_value()) << "a malformed world must not be returned";
+    for (const semo::runtime::WorldError& d : errors) {
+      bool matched = false;
+      for (Expectation& e : expected) {
+        if (e.met || e.severity != semo::Severity::Error || e.line != d.line || e.column != d.column) continue;
+        if (d.message.find(e.text) == std::string::npos) continue;
+        e.met = matched = true;
+        break;
+      }
+      if (!matched) ADD_FAILURE() << "unexpected diagnostic:\n" << semo::runtime::formatWorldError(d);
+    }
+    for (const Expectation& e : expected) {
+      EXPECT_TRUE(e.met) << file.filename().string() << ": expected error at " << e.line << ":" << e.column << " containing '" << e.text
+                         << "' was not reported";
+    }
+    return;
+  }
+
   semo::SourceManager sources;
   semo::DiagnosticEngine diags(sources);
-  std::string kind = file.parent_path().filename().string();
   fs::path dir = file.parent_path();
   if (kind == "mission") {
     fs::path strategy = dir / directive(text, "strategy", "../common/strategy.xml");
@@ -107,6 +165,15 @@ TEST_P(DiagnosticCase, ReportsExactlyTheExpectedDiagnostics) {
     semo::FileId id = sources.load(file.string(), error);
     ASSERT_TRUE(error.empty()) << error;
     EXPECT_FALSE(semo::sdf::readTaskGraphJson(sources, id, diags).has_value()) << "a malformed task graph must not be returned";
+  } else if (kind == "trace") {
+    std::optional<semo::ir::Model> model = traceModel(file, text, sources, diags);
+    ASSERT_TRUE(model.has_value()) << file << ": its \"_model\" does not load";
+    std::string error;
+    semo::FileId id = sources.load(file.string(), error);
+    ASSERT_TRUE(error.empty()) << error;
+    semo::checker::TraceReadOptions options;
+    options.property = jsonDirective(text, "property", "");
+    EXPECT_FALSE(semo::checker::readTrace(sources, id, *model, diags, options).has_value()) << "a trace with errors must not be returned";
   } else {
     semo::loadRobotType(sources, file.string(), {}, diags);
   }

@@ -88,7 +88,9 @@ TEST(LinkLoss, RatesAndBursts) {
     if (b.lose(r)) {
       ++run;
     } else {
-      if (run > 0) EXPECT_EQ(run % 4, 0) << "losses come in bursts of exactly 4 (or back-to-back bursts)";
+      if (run > 0) {
+        EXPECT_EQ(run % 4, 0) << "losses come in bursts of exactly 4 (or back-to-back bursts)";
+      }
       run = 0;
     }
   }
@@ -151,7 +153,9 @@ TEST(KnowledgeStore, MergeIsCommutativeAssociativeAndIdempotent) {
     ba.merge(s[0], t);
     EXPECT_TRUE(ab.sameFactsAs(ba));
     for (std::uint32_t f = 0; f < facts.size(); ++f) {
-      if (ab.holds(f)) EXPECT_EQ(ab.stamp(f), ba.stamp(f));
+      if (ab.holds(f)) {
+        EXPECT_EQ(ab.stamp(f), ba.stamp(f));
+      }
     }
     KnowledgeStore left = ab, right = s[1];
     left.merge(s[2], t);

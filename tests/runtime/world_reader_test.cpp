@@ -60,6 +60,9 @@ TEST(WorldReader, ReadsEveryKindOfEntry) {
   EXPECT_EQ(w->arena->second.y, 6);
 
   ASSERT_EQ(w->places.size(), 2u);
+  EXPECT_EQ(w->places[0].name, "base camp");  // file order, not key order
+  EXPECT_EQ(w->values[0].name, "SlaveTeam.light");
+  EXPECT_EQ(w->values[5].name, "Team.arrived");
   const Place* paris = w->place("Paris palace of congress");
   ASSERT_NE(paris, nullptr);
   EXPECT_EQ(paris->at.y, 2.5);
@@ -262,6 +265,21 @@ TEST(WorldReader, NeverCrashesOnGarbage) {
       EXPECT_GE(e.line, 1u);
     }
   }
+}
+
+// The example of the format's documentation is a valid world.
+TEST(WorldReader, DocumentationExampleIsValid) {
+  std::ifstream in(std::string(SEMO_SOURCE_DIR) + "/runtime/WORLD.md");
+  const std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t start = doc.find("```json\n");
+  ASSERT_NE(start, std::string::npos);
+  const std::size_t end = doc.find("```", start + 8);
+  std::vector<WorldError> errors;
+  std::optional<World> w = parseWorld(doc.substr(start + 8, end - start - 8), "WORLD.md", errors);
+  for (const WorldError& e : errors) ADD_FAILURE() << formatWorldError(e);
+  ASSERT_TRUE(w.has_value());
+  EXPECT_EQ(w->values.size(), 5u);
+  EXPECT_EQ(w->goal.size(), 1u);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "semo/checker/explicit_search.hpp"
 #include "semo/checker/fingerprint.hpp"
 #include "semo/checker/liveness_search.hpp"
+#include "semo/checker/smt_search.hpp"
 #include "semo/checker/trace_reader.hpp"
 
 namespace semo::checker {
@@ -115,6 +116,27 @@ INSTANTIATE_TEST_SUITE_P(Defects, TraceRoundTrip,
                            std::string n = info.param.mission;
                            return n.substr(n.rfind('/') + 1, n.find('.') - n.rfind('/') - 1);
                          });
+
+TEST(TraceReader, TheSmtEnginesCounterexamplesReadBackToo) {
+  for (const test::ShippedMission& mission : {test::ShippedMission{"specs/defects/flood.semo", "specs/defects/strategy.xml"},
+                                              test::ShippedMission{"specs/defects/circular_wait.semo", "specs/defects/strategy.xml"}}) {
+    SCOPED_TRACE(mission.mission);
+    std::optional<ir::Model> m = test::translateShipped(mission);
+    ASSERT_TRUE(m.has_value());
+    SmtOptions options;
+    options.induction = options.ic3 = false;
+    SmtResult r = checkSafetySmt(*m, options);
+    std::size_t found = 0;
+    for (const PropertyResult& p : r.search.properties) {
+      if (!p.counterexample) continue;
+      ++found;
+      auto back = read(counterexample(*m, *p.counterexample).dump(), *m);
+      ASSERT_TRUE(back->trace.has_value()) << back->errors();
+      expectSameSteps(*p.counterexample, *back->trace);
+    }
+    EXPECT_GT(found, 0u);
+  }
+}
 
 TEST(TraceReader, DefaultIsTheFirstViolatedProperty) {
   std::optional<ir::Model> m = test::translateShipped({"specs/defects/early_clear.semo", "specs/defects/strategy.xml"});
