@@ -79,6 +79,7 @@ struct SimulateOptions {
   std::string lossModel = "bernoulli";
   std::optional<std::string> trace, svg;
   bool checkConformance = false;
+  bool keepRunning = false;  // go on after the world's goal is reached, to --duration
 };
 
 // Writes through a temporary file and renames it, so that a failure never leaves half a file.

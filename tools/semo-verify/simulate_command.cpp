@@ -121,6 +121,7 @@ int runSimulate(const SimulateOptions& options) {
     return kBadInput;
   }
   sim.duration = *duration;
+  sim.stopAtGoal = !options.keepRunning;
   sim.loss = options.loss;
   std::string error;
   std::optional<runtime::LossModel> lossModel = runtime::LossModel::parse(options.lossModel, error);
