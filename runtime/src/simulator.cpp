@@ -37,6 +37,7 @@ Team::Team(const MissionTables& tables, const World& world, const TaskLibrary& l
   for (Id robot = 0; robot < n; ++robot) {
     const RobotTable& table = tables.robots[robot];
     const TeamTable& team = tables.teams[table.team];
+    teamNames_.push_back(team.name);
     RobotRun& r = robots_[robot];
     r.mode = team.initialMode;
     r.plans.resize(table.plans.size());

@@ -4,6 +4,7 @@
 #include "semo/runtime/tasklib.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -50,7 +51,7 @@ class GoTo final : public Behaviour {
   bool known_ = false;
 };
 
-// A group service's search (searchPaper): drives to the nearest place where a fact it does not hold
+// A group service's search (searchPaper, spreadOut): drives to the nearest place where a fact it does not hold
 // can be found; stands still once it knows every fact within its world.
 class Search final : public Behaviour {
  public:
@@ -127,6 +128,165 @@ class Hide final : public Behaviour {
   double since_ = 0;
 };
 
+// `p` moved 0.3 m inside the world's arena where it has one: its walls stop a real robot, so a
+// behaviour that aims at a point of its own making aims inside them.
+Vec2 insideArena(const BehaviourContext& ctx, Vec2 p) {
+  if (!ctx.world->arena) return p;
+  const auto& [lo, hi] = *ctx.world->arena;
+  return {std::clamp(p.x, std::min(lo.x + 0.3, hi.x), std::max(hi.x - 0.3, lo.x)), std::clamp(p.y, std::min(lo.y + 0.3, hi.y), std::max(hi.y - 0.3, lo.y))};
+}
+
+// The nearest live robot other than ctx.robot whose team is (sameTeam) or is not (!sameTeam) `team`;
+// -1 when there is none. Reads the poses every robot's camera or range sensor would show.
+int nearestRobot(const BehaviourContext& ctx, std::string_view team, bool sameTeam) {
+  const Pose me = ctx.body->pose();
+  int nearest = -1;
+  double best = 1e300;
+  for (std::size_t r = 0; r < ctx.poses->size(); ++r) {
+    if (r == ctx.robot || !(*ctx.alive)[r] || (((*ctx.teams)[r] == team) != sameTeam)) continue;
+    const double d = std::hypot((*ctx.poses)[r].x - me.x, (*ctx.poses)[r].y - me.y);
+    if (d < best) best = d, nearest = static_cast<int>(r);
+  }
+  return nearest;
+}
+
+// pursue(team): drives after one robot of the named team (of any other team when no name is given):
+// the nearest live one not already within reach (a robot within reach has just been caught). Over
+// once it is reached or gone; when there is nobody to chase it waits a second first, so that the
+// mission's restart of the pursuit is not a busy loop.
+class Pursue final : public Behaviour {
+ public:
+  void start(BehaviourContext& ctx) override {
+    since_ = ctx.now;
+    const std::string_view own = (*ctx.teams)[ctx.robot];
+    const Pose me = ctx.body->pose();
+    double best = 1e300;
+    target_ = -1;
+    for (std::size_t r = 0; r < ctx.poses->size(); ++r) {
+      const bool wanted = ctx.args.empty() ? (*ctx.teams)[r] != own : (*ctx.teams)[r] == ctx.args.front();
+      if (r == ctx.robot || !(*ctx.alive)[r] || !wanted) continue;
+      const double d = std::hypot((*ctx.poses)[r].x - me.x, (*ctx.poses)[r].y - me.y);
+      if (d > kReach && d < best) best = d, target_ = static_cast<int>(r);
+    }
+  }
+  bool step(BehaviourContext& ctx) override {
+    const bool over = target_ < 0 ? ctx.now - since_ + 1e-9 >= 1.0
+                                  : !(*ctx.alive)[target_] || steer(ctx, {(*ctx.poses)[target_].x, (*ctx.poses)[target_].y}) < kReach;
+    if (over || target_ < 0) ctx.body->command(0, 0);
+    return over;
+  }
+
+ private:
+  static constexpr double kReach = 0.35;  // metres: caught
+  int target_ = -1;
+  double since_ = 0;
+};
+
+// runAway: drives away from the nearest robot of another team (of any team when it is alone with
+// its own) for a few seconds, re-aiming every period as the pursuer moves.
+class RunAway final : public Behaviour {
+ public:
+  void start(BehaviourContext& ctx) override { since_ = ctx.now; }
+  bool step(BehaviourContext& ctx) override {
+    int from = nearestRobot(ctx, (*ctx.teams)[ctx.robot], false);
+    if (from < 0) from = nearestRobot(ctx, (*ctx.teams)[ctx.robot], true);
+    if (from < 0 || ctx.now - since_ + 1e-9 >= kSeconds) {
+      ctx.body->command(0, 0);
+      return true;
+    }
+    const Pose me = ctx.body->pose(), them = (*ctx.poses)[from];
+    const double d = std::max(std::hypot(me.x - them.x, me.y - them.y), 1e-6);
+    // 1 m ahead on the line away; cornered against a wall, it stays there until the time is up.
+    if (steer(ctx, insideArena(ctx, {me.x + (me.x - them.x) / d, me.y + (me.y - them.y) / d})) < 0.1) ctx.body->command(0, 0);
+    return false;
+  }
+
+ private:
+  static constexpr double kSeconds = 3.0;
+  double since_ = 0;
+};
+
+// wander: goes round a fixed square lap of 1 m from where the call starts (ahead, then to the left;
+// within the arena), for ever: the mode change ends it. Deterministic, so runs with the same seed draw the same paths.
+class Wander final : public Behaviour {
+ public:
+  void start(BehaviourContext& ctx) override {
+    const Pose p = ctx.body->pose();
+    const Vec2 ahead{std::cos(p.theta), std::sin(p.theta)}, left{-ahead.y, ahead.x};
+    lap_ = {Vec2{p.x + ahead.x, p.y + ahead.y}, Vec2{p.x + ahead.x + left.x, p.y + ahead.y + left.y}, Vec2{p.x + left.x, p.y + left.y},
+            Vec2{p.x, p.y}};
+    for (Vec2& corner : lap_) corner = insideArena(ctx, corner);
+    next_ = 0;
+  }
+  bool step(BehaviourContext& ctx) override {
+    if (steer(ctx, lap_[next_], 0.6) < 0.1) next_ = (next_ + 1) % lap_.size();
+    return false;
+  }
+
+ private:
+  std::array<Vec2, 4> lap_{};
+  std::size_t next_ = 0;
+};
+
+// patrolArea (group service, no goal: runs until the mode changes): round the world's fact sites
+// (the aisles) in the order the world lists them, for ever. It resumes on the leg of that lap
+// nearest to the robot, heading for the leg's end: a lap anchored on the world rather than on the
+// robot keeps the guards in the area and going the same way however often they scatter and come
+// back. The aisles' knowledge is found by passing them.
+class Patrol final : public Behaviour {
+ public:
+  void start(BehaviourContext& ctx) override {
+    ctx.body->command(0, 0);
+    const std::vector<FactSite>& sites = ctx.world->facts;
+    const Pose p = ctx.body->pose();
+    double best = 1e300;
+    for (std::size_t i = 0; i < sites.size(); ++i) {  // distance from p to the leg i -> i+1
+      const Vec2 a = sites[i].at, b = sites[(i + 1) % sites.size()].at;
+      const double lx = b.x - a.x, ly = b.y - a.y, len2 = lx * lx + ly * ly;
+      const double u = len2 > 0 ? std::clamp(((p.x - a.x) * lx + (p.y - a.y) * ly) / len2, 0.0, 1.0) : 0.0;
+      const double d = std::hypot(a.x + u * lx - p.x, a.y + u * ly - p.y);
+      if (d < best) best = d, next_ = (i + 1) % sites.size();
+    }
+  }
+  bool step(BehaviourContext& ctx) override {
+    const std::vector<FactSite>& sites = ctx.world->facts;
+    if (sites.empty()) ctx.body->command(0, 0);
+    else if (steer(ctx, sites[next_].at, 0.8) < 0.15) next_ = (next_ + 1) % sites.size();
+    return false;
+  }
+
+ private:
+  std::size_t next_ = 0;
+};
+
+// scatter: drives 1 m straight out from the centre of its team's live robots (straight ahead when it
+// stands at the centre), then stops: the group opens up around where it was (within the arena).
+class Scatter final : public Behaviour {
+ public:
+  void start(BehaviourContext& ctx) override {
+    const Pose me = ctx.body->pose();
+    double cx = 0, cy = 0, n = 0;
+    for (std::size_t r = 0; r < ctx.poses->size(); ++r) {
+      if (!(*ctx.alive)[r] || (*ctx.teams)[r] != (*ctx.teams)[ctx.robot]) continue;
+      cx += (*ctx.poses)[r].x, cy += (*ctx.poses)[r].y, n += 1;
+    }
+    double dx = me.x - cx / n, dy = me.y - cy / n;
+    double d = std::hypot(dx, dy);
+    if (d < 1e-3) dx = std::cos(me.theta), dy = std::sin(me.theta), d = 1;
+    target_ = insideArena(ctx, {me.x + dx / d, me.y + dy / d});
+  }
+  bool step(BehaviourContext& ctx) override {
+    if (steer(ctx, target_) < 0.1) {
+      ctx.body->command(0, 0);
+      return true;
+    }
+    return false;
+  }
+
+ private:
+  Vec2 target_;
+};
+
 // A call that takes a fixed time with a fixed command (flash a LED, back off, follow the joystick).
 class Timed final : public Behaviour {
  public:
@@ -161,6 +321,13 @@ TaskLibrary TaskLibrary::standard() {
   lib.add("backOff", [] { return std::make_unique<Timed>(1.0, -0.1, 0); });
   lib.add("stop", [] { return std::make_unique<Timed>(0, 0, 0); });
   lib.add("displayReport", [] { return std::make_unique<Timed>(0, 0, 0); });
+  lib.add("pursue", [] { return std::make_unique<Pursue>(); });
+  lib.add("runAway", [] { return std::make_unique<RunAway>(); });
+  lib.add("wander", [] { return std::make_unique<Wander>(); });
+  lib.add("spreadOut", [] { return std::make_unique<Search>(); });  // claim the nearest unclaimed sector
+  lib.add("patrolArea", [] { return std::make_unique<Patrol>(); });
+  lib.add("scatter", [] { return std::make_unique<Scatter>(); });
+  lib.add("holdPosition", [] { return std::make_unique<Timed>(1.0, 0, 0); });  // stand still, then the final mode holds it
   return lib;
 }
 

@@ -144,6 +144,7 @@ class Team {
   std::vector<Body> bodies_;
   std::vector<Pose> poses_;
   std::vector<bool> aliveFlags_;
+  std::vector<std::string> teamNames_;  // per robot: its team's name (for behaviours that tell friend from foe)
   std::vector<std::int32_t> channel_;  // per topic: values queued on its reliable channel
   std::vector<std::int32_t> crashed_;  // per team
   std::priority_queue<QueuedEvent, std::vector<QueuedEvent>, std::greater<>> queue_;

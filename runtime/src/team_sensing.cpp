@@ -129,6 +129,7 @@ void Team::startCall(Id robot, Id plan, Id call) {
   p.context.world = &world_;
   p.context.poses = &poses_;
   p.context.alive = &aliveFlags_;
+  p.context.teams = &teamNames_;
   p.context.args = callArgs(robot, call);
   p.context.destination = &robots_[robot].destination;
   p.context.unknownFacts.clear();

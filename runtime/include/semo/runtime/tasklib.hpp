@@ -6,7 +6,7 @@
 //
 // A behaviour runs once per control period while its call is under way; it commands the robot's
 // body and says when the call is over. It never blocks and never sees other robots' state except
-// their poses (what a camera or a proximity sensor would show).
+// their poses and teams (what a camera or a proximity sensor would show).
 #include <functional>
 #include <map>
 #include <memory>
@@ -28,6 +28,7 @@ struct BehaviourContext {
   const World* world = nullptr;
   const std::vector<Pose>* poses = nullptr;  // every robot's pose now (robot order)
   const std::vector<bool>* alive = nullptr;
+  const std::vector<std::string>* teams = nullptr;  // every robot's team name (robot order)
   std::vector<std::string> args;             // the call's arguments, as text ("base camp")
   // Facts of the knowledge items the call works for that the robot does not hold yet (group services).
   std::vector<const FactSite*> unknownFacts;
