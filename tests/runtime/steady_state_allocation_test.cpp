@@ -1,0 +1,120 @@
+// The runtime's hot calls allocate nothing once their objects are built and warmed up: 10,000
+// calls each of the random streams, the loss models, knowledge merges, channel pushes and pops and
+// static schedule iterations, measured by the test executable's counting operator new.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "allocation_counter.hpp"
+#include "semo/runtime/channel.hpp"
+#include "semo/runtime/knowledge.hpp"
+#include "semo/runtime/loss.hpp"
+#include "semo/runtime/random.hpp"
+
+namespace semo::runtime {
+namespace {
+
+using test_support::AllocationMeter;
+
+constexpr int kCalls = 10000;
+
+TEST(AllocationCounter, CountsWhatTheHeapHandsOut) {
+  volatile std::size_t n = 100;  // a size the compiler cannot see, so the allocation stays
+  AllocationMeter meter;
+  {
+    std::vector<int> values(n);
+    std::string text(n, 'x');
+    values[0] = static_cast<int>(text.size());
+    EXPECT_EQ(values[0], 100);
+  }
+  void* raw = ::operator new(24);
+  ::operator delete(raw);
+  EXPECT_GE(meter.allocations(), 3u);
+}
+
+TEST(SteadyState, RandomStreamsAllocateNothing) {
+  RandomStream rng(1);
+  std::uint64_t sink = 0;
+  AllocationMeter meter;
+  for (int i = 0; i < kCalls; ++i) {
+    sink += rng.next() + rng.below(17) + (rng.bernoulli(0.3) ? 1 : 0) + static_cast<std::uint64_t>(rng.uniform() * 8);
+    sink += RandomStream::derive(sink, "link", static_cast<std::uint64_t>(i)).next();
+  }
+  EXPECT_EQ(meter.allocations(), 0u);
+  EXPECT_NE(sink, 0u);
+}
+
+TEST(SteadyState, LinkLossAllocatesNothing) {
+  std::string error;
+  std::vector<LinkLoss> links;
+  for (const char* text : {"bernoulli", "burst:3", "gilbert:0.1,0.3"}) {
+    LossModel model = *LossModel::parse(text, error);
+    model.p = 0.2;
+    links.emplace_back(model);
+  }
+  RandomStream rng(2);
+  int lost = 0;
+  AllocationMeter meter;
+  for (int i = 0; i < kCalls; ++i) {
+    for (LinkLoss& link : links) {
+      lost += link.lose(rng) ? 1 : 0;
+      lost += link.loseWithRetransmissions(rng, 2) ? 1 : 0;
+      lost += link.lostInARow();
+    }
+  }
+  EXPECT_EQ(meter.allocations(), 0u);
+  EXPECT_GT(lost, 0);
+}
+
+TEST(SteadyState, KnowledgeMergesAllocateNothing) {
+  std::vector<std::string> facts;
+  for (int i = 0; i < 100; ++i) facts.push_back("cell " + std::to_string(i));
+  for (const auto policy : {KnowledgeStore::Merge::Newest, KnowledgeStore::Merge::Union}) {
+    std::vector<KnowledgeStore> stores(3, KnowledgeStore(facts, policy));
+    std::vector<std::uint64_t> clocks(3);
+    RandomStream rng(3);
+    int added = 0;
+    AllocationMeter meter;
+    for (int i = 0; i < kCalls; ++i) {
+      const auto r = static_cast<std::uint32_t>(rng.below(3));
+      const auto other = rng.below(3);
+      stores[r].discover(static_cast<std::uint32_t>(rng.below(facts.size())), r, clocks[r]);
+      added += stores[r].merge(stores[other], clocks[r]);
+      added += stores[r].sameFactsAs(stores[other]) ? 1 : 0;
+    }
+    EXPECT_EQ(meter.allocations(), 0u);
+    EXPECT_GT(added, 0);
+  }
+}
+
+TEST(SteadyState, ChannelsAllocateNothing) {
+  BoundedChannel<std::uint64_t> channel(8);
+  RandomStream rng(4);
+  std::uint64_t sink = 0;
+  AllocationMeter meter;
+  for (int i = 0; i < kCalls; ++i) {
+    if (!channel.full()) channel.push(static_cast<std::uint64_t>(i));
+    channel.tryPush(static_cast<std::uint64_t>(i) * 3);
+    std::uint64_t value = 0;
+    if (rng.bernoulli(0.6) && channel.tryPop(value)) sink += value;
+  }
+  EXPECT_EQ(meter.allocations(), 0u);
+  EXPECT_FALSE(channel.overflowed());
+  EXPECT_NE(sink, 0u);
+}
+
+TEST(SteadyState, StaticScheduleIterationsAllocateNothing) {
+  StaticSchedule schedule({{0, 2}, {1, 1}, {0, 1}, {1, 1}, {2, 1}}, {{0, 1, 2, 3, 0, 4}, {1, 2, 1, 2, 0, 2}});
+  std::uint64_t fired = 0;
+  ASSERT_TRUE(schedule.runIteration([&](Id) { ++fired; }));  // warm-up
+  bool ok = true;
+  AllocationMeter meter;
+  for (int i = 0; i < kCalls; ++i) ok = schedule.runIteration([&](Id task) { fired += task + 1; }) && ok;
+  EXPECT_EQ(meter.allocations(), 0u);
+  EXPECT_TRUE(ok);
+  EXPECT_TRUE(schedule.atInitialTokens());
+}
+
+}  // namespace
+}  // namespace semo::runtime
