@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "semo/checker/fingerprint.hpp"
+#include "semo/frontend/json_text.hpp"
 #include "semo/runtime/json_positions.hpp"
 
 namespace semo::checker {
@@ -48,19 +49,6 @@ constexpr std::size_t kMaxDepth = 64;
 
 struct Invalid {};
 
-// The line and column of a byte offset (columns count bytes, as everywhere in semo).
-SourceRange rangeAt(FileId file, const std::string& text, std::size_t offset) {
-  std::uint32_t line = 1, column = 1;
-  for (std::size_t i = 0; i < offset && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      column = 1;
-    } else {
-      ++column;
-    }
-  }
-  return SourceRange{{file, line, column}, 1};
-}
 
 // The offset of the first bracket nested deeper than kMaxDepth, if there is one.
 std::optional<std::size_t> tooDeep(std::string_view t) {
@@ -134,7 +122,7 @@ class Reader {
   ReplayedTrace out_;
 
   [[noreturn]] void fail(const std::string& pointer, const std::string& message) {
-    diags_.error(rangeAt(file_, text_, positions_.offsetOf(pointer)), message);
+    diags_.error(jsonRangeAt(file_, text_, positions_.offsetOf(pointer)), message);
     throw Invalid{};
   }
 
@@ -426,30 +414,15 @@ class Reader {
 std::optional<ReplayedTrace> readTrace(const SourceManager& sources, FileId file, const Stepper& stepper, DiagnosticEngine& diags,
                                        const TraceReadOptions& options) {
   const std::string& text = sources.text(file);
-  // The JSON parser would stop at a NUL byte and ignore what follows it.
-  if (const auto nul = text.find('\0'); nul != std::string::npos) {
-    diags.error(rangeAt(file, text, nul), "not valid JSON: a NUL byte");
-    return std::nullopt;
+  if (const auto nul = text.find('\0'); nul == std::string::npos) {
+    if (auto deep = tooDeep(text)) {
+      diags.error(jsonRangeAt(file, text, *deep), "nested more than " + std::to_string(kMaxDepth) + " levels deep: not a trace");
+      return std::nullopt;
+    }
   }
-  if (auto deep = tooDeep(text)) {
-    diags.error(rangeAt(file, text, *deep), "nested more than " + std::to_string(kMaxDepth) + " levels deep: not a trace");
-    return std::nullopt;
-  }
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::parse_error& e) {
-    std::string what = e.what();
-    if (const auto colon = what.find("syntax error"); colon != std::string::npos) what = what.substr(colon);
-    diags.error(rangeAt(file, text, e.byte == 0 ? 0 : e.byte - 1), "not valid JSON: " + what);
-    return std::nullopt;
-  } catch (const json::exception& e) {  // a number past what a double holds: nlohmann gives no position
-    std::string what = e.what();
-    if (const auto bracket = what.find("] "); bracket != std::string::npos) what = what.substr(bracket + 2);
-    diags.error(rangeAt(file, text, 0), "not valid JSON: " + what);
-    return std::nullopt;
-  }
-  return Reader(sources, file, stepper, diags, options).read(root);
+  std::optional<json> root = parseJsonFile(sources, file, diags);
+  if (!root) return std::nullopt;
+  return Reader(sources, file, stepper, diags, options).read(*root);
 }
 
 std::optional<ReplayedTrace> readTrace(const SourceManager& sources, FileId file, const ir::Model& model, DiagnosticEngine& diags,

@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "semo/frontend/json_text.hpp"
 #include "semo/runtime/json_positions.hpp"
 #include "semo/sdf/task_graph_io.hpp"
 
@@ -28,19 +29,6 @@ std::string dotQuoted(const std::string& s) {
 
 struct Invalid {};
 
-// The line and column of a byte offset (columns count bytes, as everywhere in semo).
-SourceRange rangeAt(FileId file, const std::string& text, std::size_t offset) {
-  std::uint32_t line = 1, column = 1;
-  for (std::size_t i = 0; i < offset && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      column = 1;
-    } else {
-      ++column;
-    }
-  }
-  return SourceRange{{file, line, column}, 1};
-}
 
 class Reader {
  public:
@@ -64,7 +52,7 @@ class Reader {
   TaskGraph tg_;
   std::map<std::string, std::uint32_t> taskIndex_, channelIndex_;
 
-  SourceRange at(const std::string& pointer) const { return rangeAt(file_, text_, positions_.offsetOf(pointer)); }
+  SourceRange at(const std::string& pointer) const { return jsonRangeAt(file_, text_, positions_.offsetOf(pointer)); }
 
   [[noreturn]] void fail(const std::string& pointer, const std::string& message) {
     diags_.error(at(pointer), message);
@@ -307,27 +295,9 @@ std::string taskGraphToJson(const TaskGraph& tg) {
 }
 
 std::optional<TaskGraph> readTaskGraphJson(const SourceManager& sources, FileId file, DiagnosticEngine& diags) {
-  const std::string& text = sources.text(file);
-  // The JSON parser would stop at a NUL byte and ignore what follows it.
-  if (const auto nul = text.find('\0'); nul != std::string::npos) {
-    diags.error(rangeAt(file, text, nul), "not valid JSON: a NUL byte");
-    return std::nullopt;
-  }
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::parse_error& e) {
-    std::string what = e.what();
-    if (const auto colon = what.find("syntax error"); colon != std::string::npos) what = what.substr(colon);
-    diags.error(rangeAt(file, text, e.byte == 0 ? 0 : e.byte - 1), "not valid JSON: " + what);
-    return std::nullopt;
-  } catch (const json::exception& e) {  // a number past what a double holds: nlohmann gives no position
-    std::string what = e.what();
-    if (const auto bracket = what.find("] "); bracket != std::string::npos) what = what.substr(bracket + 2);
-    diags.error(rangeAt(file, text, 0), "not valid JSON: " + what);
-    return std::nullopt;
-  }
-  return Reader(sources, file, diags).read(root);
+  std::optional<json> root = parseJsonFile(sources, file, diags);
+  if (!root) return std::nullopt;
+  return Reader(sources, file, diags).read(*root);
 }
 
 std::string taskGraphToGraphviz(const TaskGraph& tg) {
