@@ -61,6 +61,7 @@ Team::Team(const MissionTables& tables, const World& world, const TaskLibrary& l
     const StartPose* start = world.start(table.name);
     Pose pose;
     if (start != nullptr) pose = {start->at.x, start->at.y, start->heading};
+    else pose = {static_cast<double>(table.indexInTeam), -static_cast<double>(table.team), 0.0};  // a replay without a world: one row per team
     bodies_.emplace_back(pose, table.geometry, 0.0);
     poses_[robot] = pose;
     r.destination = {1e9, 1e9};  // nowhere yet: "at_destination" holds only once a move has ended there
@@ -80,26 +81,35 @@ void Team::schedule(Micros t, QueuedEvent::Kind kind, Id a, Id b, std::uint64_t 
 }
 
 void Team::run() {
-  const Micros end = toMicros(options_.duration);
   for (Id robot = 0; robot < robots_.size(); ++robot) {
     const TeamTable& team = t_.teams[t_.robots[robot].team];
     for (Id p = 0; p < robots_[robot].plans.size(); ++p) startPlan(robot, p, team.modes[robots_[robot].mode].entry[p]);
   }
+  startTimers();
+  for (Id c = 0; c < options_.crashes.size(); ++c) schedule(toMicros(options_.crashes[c].at), QueuedEvent::Kind::Crash, c);
+  abstractState(before_);
+  eventLoop(toMicros(options_.duration));
+}
+
+// The periodic events from now on: heartbeat periods, gossip rounds, control periods, pose samples.
+void Team::startTimers() {
   for (Id lb = 0; lb < t_.leaderBlocks.size(); ++lb) {
-    if (t_.leaderBlocks[lb].detectsFailures) schedule(toMicros(t_.leaderBlocks[lb].heartbeat), QueuedEvent::Kind::Heartbeat, lb);
+    if (t_.leaderBlocks[lb].detectsFailures) schedule(now_ + toMicros(t_.leaderBlocks[lb].heartbeat), QueuedEvent::Kind::Heartbeat, lb);
   }
   for (Id k = 0; k < t_.knowledge.size(); ++k) {
-    if (t_.knowledge[k].shared) schedule(toMicros(t_.knowledge[k].period), QueuedEvent::Kind::Gossip, k);
+    if (t_.knowledge[k].shared) schedule(now_ + toMicros(t_.knowledge[k].period), QueuedEvent::Kind::Gossip, k);
   }
-  for (Id c = 0; c < options_.crashes.size(); ++c) schedule(toMicros(options_.crashes[c].at), QueuedEvent::Kind::Crash, c);
-  schedule(0, QueuedEvent::Kind::Control);
-  schedule(0, QueuedEvent::Kind::Sample);
-  abstractState(before_);
+  schedule(now_, QueuedEvent::Kind::Control);
+  schedule(now_, QueuedEvent::Kind::Sample);
+}
+
+void Team::eventLoop(Micros end) {
   bool reached = false;
   while (!queue_.empty() && !stopped_) {
     QueuedEvent e = queue_.top();
     if (e.t > end) break;
     queue_.pop();
+    e.t = std::max(e.t, now_);  // after a replay's script, wake-ups it left behind happen now
     if (e.t != now_) zeroTimeSteps_ = 0;
     now_ = e.t;
     switch (e.kind) {
@@ -197,10 +207,7 @@ bool Team::goalReached() const {
   return true;
 }
 
-}  // namespace detail
-
-SimTrace simulate(const MissionTables& tables, const World& world, const TaskLibrary& library, const SimulationOptions& options,
-                  StepObserver* observer) {
+SimTrace emptyTrace(const MissionTables& tables, const World& world, const SimulationOptions& options) {
   SimTrace trace;
   trace.modelFingerprint = tables.modelFingerprint;
   trace.seed = options.seed;
@@ -215,6 +222,14 @@ SimTrace simulate(const MissionTables& tables, const World& world, const TaskLib
   }
   trace.faults = faults.empty() ? "none" : faults;
   trace.summary.goalStated = !world.goal.empty();
+  return trace;
+}
+
+}  // namespace detail
+
+SimTrace simulate(const MissionTables& tables, const World& world, const TaskLibrary& library, const SimulationOptions& options,
+                  StepObserver* observer) {
+  SimTrace trace = detail::emptyTrace(tables, world, options);
   detail::Team team(tables, world, library, options, observer, trace);
   team.run();
   return trace;

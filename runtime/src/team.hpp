@@ -13,6 +13,7 @@
 
 #include "semo/runtime/knowledge.hpp"
 #include "semo/runtime/random.hpp"
+#include "semo/runtime/replay.hpp"
 #include "semo/runtime/simulator.hpp"
 
 namespace semo::runtime::detail {
@@ -69,11 +70,16 @@ struct QueuedEvent {
   bool operator>(const QueuedEvent& o) const { return t != o.t ? t > o.t : seq > o.seq; }
 };
 
+// A trace with the run's header filled in (mission tables, world, seed, faults) and no events yet.
+SimTrace emptyTrace(const MissionTables& tables, const World& world, const SimulationOptions& options);
+
 class Team {
  public:
   Team(const MissionTables& tables, const World& world, const TaskLibrary& library, const SimulationOptions& options,
        StepObserver* observer, SimTrace& trace);
   void run();
+  // Replay (replay.hpp): takes exactly `rules`, then runs freely for `settle` seconds.
+  void runScript(const std::vector<Id>& rules, const ReplayOptions& options);
 
  private:
   // ---- team_steps.cpp
@@ -109,11 +115,16 @@ class Team {
   void deliverMessage(Id robot, Id topic);
   void heartbeatPeriod(Id leaderBlock);
   void takeovers(Id robot);
+  [[nodiscard]] bool canTakeOver(Id robot, std::size_t slot) const;
+  void takeOver(Id robot, std::size_t slot);
+  bool learnFrom(Id q, Id sender, Id knowledge);
+  void discoverFact(Id robot, const RobotTable::Discover& d, std::uint32_t fact);
   void gossip(Id knowledge);
   void discover(Id robot, Id plan);
   void crash(Id robot, const std::string& why);
   void crashPlanned(Id crashPlan);
   bool lose(Id kind, Id link, bool lossy, std::int64_t retransmissions);
+  bool loseHeartbeat(std::size_t candidate, Id robot);
   bool waiting(Id robot, Id leaderBlock) const;
   bool inService(Id robot, Id knowledge) const;
   void leaderChange(Id leaderBlock, Id robot);
@@ -126,7 +137,13 @@ class Team {
   void step(Id robot, std::vector<Id> rules, std::string what, std::string origin = {});
   void beginStep();
 
+  // ---- team_replay.cpp: one step of a counterexample, forced; "" when taken, else why it cannot be
+  std::string forceStep(Id rule, const RuleSite& site);
+  std::string forceRow(Id robot, Id plan, Id row);
+
   // ---- simulator.cpp
+  void startTimers();
+  void eventLoop(Micros end);
   void schedule(Micros t, QueuedEvent::Kind kind, Id a = 0, Id b = 0, std::uint64_t generation = 0);
   void note(Id robot, TraceEvent::Kind kind, std::string label, std::string detail = {}, Id peer = kNone);
   void samplePoses();
@@ -162,6 +179,13 @@ class Team {
   std::vector<std::int32_t> scratchA_, scratchB_;
   std::vector<std::uint8_t> scratchC_;
   std::vector<std::int32_t> varSlot_;  // per IR variable of kind Knows: the robot's knowledge slot
+  // Replay: steps happen only as the counterexample says (no automatic mode defaults or takeovers),
+  // and losses are what it chose.
+  bool scripted_ = false;
+  std::vector<Id> lastStep_;  // the rules of the last step taken
+  int forcedLoss_ = -1;  // -1: the loss model decides; 0: delivered; 1: lost
+  static constexpr std::uint64_t kNoForcedMask = ~std::uint64_t{0};
+  std::uint64_t forcedHeartbeatLoss_ = kNoForcedMask;  // bit i: the heartbeat to candidate i is lost
 };
 
 }  // namespace semo::runtime::detail

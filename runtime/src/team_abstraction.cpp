@@ -18,6 +18,10 @@ void Team::abstractState(std::vector<std::int32_t>& out) const {
       out[v] = crashed_[var.team];
       continue;
     }
+    if (var.kind == K::Channel) {  // a reliable channel belongs to no robot: a crash does not empty it
+      out[v] = channel_[var.index];
+      continue;
+    }
     const RobotRun& r = robots_[var.robot];
     if (var.kind == K::Alive) {
       out[v] = r.alive ? 1 : 0;
@@ -48,6 +52,7 @@ void Team::beginStep() { abstractState(before_); }
 
 void Team::step(Id robot, std::vector<Id> rules, std::string what, std::string origin) {
   abstractState(after_);
+  lastStep_.assign(rules.begin(), rules.end());
   dirty_ = true;
   TraceEvent e;
   e.t = now();

@@ -14,8 +14,15 @@ enum LinkKind : Id { EventLink = 0, MessageLink = 1, HeartbeatLink = 2, GossipLi
 }  // namespace
 
 bool Team::lose(Id kind, Id receiver, bool lossy, std::int64_t retransmissions) {
+  if (forcedLoss_ >= 0) return forcedLoss_ != 0;  // replay: the counterexample decides
   if (!lossy || options_.loss <= 0) return false;
   return links_[kind * robots_.size() + receiver].loseWithRetransmissions(lossDraws_, static_cast<int>(retransmissions));
+}
+
+// The heartbeat to candidate i (robot c) of a period: in a replay, lost as the counterexample says.
+bool Team::loseHeartbeat(std::size_t i, Id c) {
+  if (forcedHeartbeatLoss_ != kNoForcedMask) return ((forcedHeartbeatLoss_ >> i) & 1U) != 0;
+  return lose(HeartbeatLink, c, true, 0);
 }
 
 Micros Team::latency() { return toMicros(0.001 + 0.004 * latency_.uniform()); }
@@ -115,7 +122,7 @@ bool Team::waiting(Id robot, Id lb) const {
 // that hears none counts a silent period; a leader that hears a more preferred one steps down.
 void Team::heartbeatPeriod(Id lb) {
   const LeaderBlockTable& l = t_.leaderBlocks[lb];
-  schedule(now_ + toMicros(l.heartbeat), QueuedEvent::Kind::Heartbeat, lb);
+  if (!scripted_) schedule(now_ + toMicros(l.heartbeat), QueuedEvent::Kind::Heartbeat, lb);
   bool anyWaiting = false;
   for (Id c : l.candidates) anyWaiting = anyWaiting || waiting(c, lb);
   if (!anyWaiting) return;  // the model's period rule is not enabled: nothing it sees changes
@@ -133,7 +140,7 @@ void Team::heartbeatPeriod(Id lb) {
     const bool isWaiting = waiting(c, lb);
     const std::int32_t louder = std::min(r.silence[lb] + 1, l.timeoutPeriods);
     if (heard) trace_.summary.messagesSent += isWaiting ? 1 : 0;
-    if (isWaiting && heard && l.lossyHeartbeats && lose(HeartbeatLink, c, true, 0)) {
+    if (isWaiting && heard && l.lossyHeartbeats && loseHeartbeat(i, c)) {
       if (r.lostRun[lb] >= l.lossBurst && !outside_) {
         outside_ = true;
         trace_.summary.outsideAssumptions = "at " + formatSeconds(now_) + " s more than " + std::to_string(l.lossBurst) +
@@ -170,29 +177,40 @@ void Team::heartbeatPeriod(Id lb) {
   for (Id c : l.candidates) takeovers(c);
 }
 
-// A candidate that heard no heartbeat for the failure timeout suspects the leader and takes over.
+// A candidate that heard no heartbeat for the failure timeout suspects the leader and takes over
+// (in a replay only when the counterexample says so: takeOver is then called on its own).
 void Team::takeovers(Id robot) {
-  RobotRun& r = robots_[robot];
+  if (scripted_) return;
   const RobotTable& table = t_.robots[robot];
   for (std::size_t slot = 0; slot < table.leaderBlocks.size(); ++slot) {
-    const Id lb = table.leaderBlocks[slot];
-    const Id rule = table.takeoverRule[slot];
-    const LeaderBlockTable& l = t_.leaderBlocks[lb];
-    if (rule == kNone || !waiting(robot, lb) || r.silence[lb] < l.timeoutPeriods) continue;
-    const GroupBlockTable& block = t_.groupBlocks[l.block];
-    beginStep();
-    r.leads[lb] = 1;
-    r.silence[lb] = 0;
-    r.lostRun[lb] = 0;
-    if (!l.lossyHeartbeats) {  // the new leader's announcement
-      for (Id d : l.candidates) robots_[d].silence[lb] = 0;
-    }
-    r.role = "leader of " + block.name;
-    note(robot, TraceEvent::Kind::Role, r.role, r.role);
-    leaderChange(lb, robot);
-    startPlan(robot, block.plan, block.arms[l.leaderArm].entry);
-    step(robot, {rule}, t_.rules[rule].label, t_.rules[rule].origin);
+    if (canTakeOver(robot, slot)) takeOver(robot, slot);
   }
+}
+
+bool Team::canTakeOver(Id robot, std::size_t slot) const {
+  const RobotTable& table = t_.robots[robot];
+  const Id lb = table.leaderBlocks[slot];
+  return table.takeoverRule[slot] != kNone && waiting(robot, lb) && robots_[robot].silence[lb] >= t_.leaderBlocks[lb].timeoutPeriods;
+}
+
+void Team::takeOver(Id robot, std::size_t slot) {
+  RobotRun& r = robots_[robot];
+  const Id lb = t_.robots[robot].leaderBlocks[slot];
+  const Id rule = t_.robots[robot].takeoverRule[slot];
+  const LeaderBlockTable& l = t_.leaderBlocks[lb];
+  const GroupBlockTable& block = t_.groupBlocks[l.block];
+  beginStep();
+  r.leads[lb] = 1;
+  r.silence[lb] = 0;
+  r.lostRun[lb] = 0;
+  if (!l.lossyHeartbeats) {  // the new leader's announcement
+    for (Id d : l.candidates) robots_[d].silence[lb] = 0;
+  }
+  r.role = "leader of " + block.name;
+  note(robot, TraceEvent::Kind::Role, r.role, r.role);
+  leaderChange(lb, robot);
+  startPlan(robot, block.plan, block.arms[l.leaderArm].entry);
+  step(robot, {rule}, t_.rules[rule].label, t_.rules[rule].origin);
 }
 
 bool Team::inService(Id robot, Id k) const {
@@ -221,22 +239,31 @@ void Team::gossip(Id k) {
         note(q, TraceEvent::Kind::Drop, item.name + " gossip lost", item.name, sender);
         continue;
       }
-      RobotRun& r = robots_[q];
-      const std::vector<Id>& items = t_.robots[q].knowledge;
-      const auto slot = std::find(items.begin(), items.end(), k) - items.begin();
-      const int before = r.knowledge[slot].count();
-      beginStep();
-      r.knowledge[slot].merge(s.knowledge[from], r.lamport);
-      const int after = r.knowledge[slot].count();
-      if (after == before) continue;  // nothing new: the model sees no change
-      const Id rule = t_.robots[q].learnRule[slot][t_.robots[sender].indexInTeam * (item.facts.size() + 1) + static_cast<std::size_t>(after)];
-      note(q, TraceEvent::Kind::Fact, "learns " + item.name + " from " + t_.robots[sender].name, item.name, sender);
-      step(q, rule == kNone ? std::vector<Id>{} : std::vector<Id>{rule}, rule == kNone ? "learns " + item.name : t_.rules[rule].label,
-           rule == kNone ? std::string() : t_.rules[rule].origin);
-      afterStep(q);
+      learnFrom(q, sender, k);
     }
   }
   convergence(k);
+}
+
+// Robot q merges what `sender` holds of item k: one learn step when it learnt facts.
+bool Team::learnFrom(Id q, Id sender, Id k) {
+  const KnowledgeTable& item = t_.knowledge[k];
+  const std::vector<Id>& senderItems = t_.robots[sender].knowledge;
+  const auto from = std::find(senderItems.begin(), senderItems.end(), k) - senderItems.begin();
+  RobotRun& r = robots_[q];
+  const std::vector<Id>& items = t_.robots[q].knowledge;
+  const auto slot = std::find(items.begin(), items.end(), k) - items.begin();
+  const int before = r.knowledge[slot].count();
+  beginStep();
+  r.knowledge[slot].merge(robots_[sender].knowledge[from], r.lamport);
+  const int after = r.knowledge[slot].count();
+  if (after == before) return false;  // nothing new: the model sees no change
+  const Id rule = t_.robots[q].learnRule[slot][t_.robots[sender].indexInTeam * (item.facts.size() + 1) + static_cast<std::size_t>(after)];
+  note(q, TraceEvent::Kind::Fact, "learns " + item.name + " from " + t_.robots[sender].name, item.name, sender);
+  step(q, rule == kNone ? std::vector<Id>{} : std::vector<Id>{rule}, rule == kNone ? "learns " + item.name : t_.rules[rule].label,
+       rule == kNone ? std::string() : t_.rules[rule].origin);
+  afterStep(q);
+  return true;
 }
 
 // A robot working in a group service finds the facts within reach it does not hold yet.
@@ -255,13 +282,21 @@ void Team::discover(Id robot, Id plan) {
       const Pose& at = poses_[robot];
       const double dx = at.x - site.at.x, dy = at.y - site.at.y;
       if (dx * dx + dy * dy > site.radius * site.radius) continue;
-      beginStep();
-      r.knowledge[slot].discover(static_cast<std::uint32_t>(fact), robot, r.lamport);
-      note(robot, TraceEvent::Kind::Fact, "finds " + item.name + ": " + site.fact, item.name + ": " + site.fact);
-      step(robot, {d.rule}, t_.rules[d.rule].label, t_.rules[d.rule].origin);
-      convergence(d.knowledge);
+      discoverFact(robot, d, static_cast<std::uint32_t>(fact));
     }
   }
+}
+
+void Team::discoverFact(Id robot, const RobotTable::Discover& d, std::uint32_t fact) {
+  RobotRun& r = robots_[robot];
+  const RobotTable& table = t_.robots[robot];
+  const KnowledgeTable& item = t_.knowledge[d.knowledge];
+  const auto slot = std::find(table.knowledge.begin(), table.knowledge.end(), d.knowledge) - table.knowledge.begin();
+  beginStep();
+  r.knowledge[slot].discover(fact, robot, r.lamport);
+  note(robot, TraceEvent::Kind::Fact, "finds " + item.name + ": " + item.facts[fact], item.name + ": " + item.facts[fact]);
+  step(robot, {d.rule}, t_.rules[d.rule].label, t_.rules[d.rule].origin);
+  convergence(d.knowledge);
 }
 
 void Team::crash(Id robot, const std::string& why) {

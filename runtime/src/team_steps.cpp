@@ -226,6 +226,10 @@ void Team::applyEffects(Id robot, Id plan, const Row& row) {
         if (none && best != kNone) {
           robots_[best].leads[e.index] = 1;
           leaderChange(e.index, best);
+          if (best != robot) {  // elected while still at the formation point: its timeline shows it from now
+            robots_[best].role = "leader of " + t_.groupBlocks[l.block].name;
+            note(best, TraceEvent::Kind::Role, robots_[best].role, robots_[best].role);
+          }
         }
         if (none && l.detectsFailures && !l.lossyHeartbeats) {  // the new leader's announcement
           for (Id c : l.candidates) robots_[c].silence[e.index] = 0;
@@ -267,7 +271,7 @@ void Team::enterMode(Id robot, Id mode) {
 
 void Team::afterStep(Id robot) {
   RobotRun& r = robots_[robot];
-  if (!r.alive || stopped_) return;
+  if (!r.alive || stopped_ || scripted_) return;  // a replay takes mode defaults and takeovers when its trace does
   const TeamTable& team = t_.teams[t_.robots[robot].team];
   const ModeTable& mode = team.modes[r.mode];
   const Id rule = t_.robots[robot].defaultRule[r.mode];

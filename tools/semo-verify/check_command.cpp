@@ -171,6 +171,7 @@ int runCheck(const CheckOptions& options) {
                            {"properties", props},            {"exitCode", code},
                            {"symmetry", r.symmetry},         {"engine", "explicit"}};
     root["modelFingerprint"] = fingerprint;
+    addModelInput(root, options.model);  // what `replay` needs to build the same model again
     if (!engineReason.empty()) root["engineChoice"] = engineReason;
     if (!r.limitReached.empty()) root["limit"] = r.limitReached;
     if (r.depthBounded) root["boundedDepth"] = r.depth;

@@ -106,6 +106,7 @@ int runCheckSmt(const CheckOptions& options, const ir::Model& model) {
                            {"bmcDepth", out.bmcDepth},      {"complete", r.complete}, {"seconds", r.seconds},
                            {"properties", props},           {"exitCode", code}};
     root["modelFingerprint"] = fingerprint;
+    addModelInput(root, options.model);  // what `replay` needs to build the same model again
     nlohmann::json formationJson = nlohmann::json::array();
     for (std::size_t b = 0; b < groups.verdicts.size(); ++b) {
       const checker::FormationVerdict& v = groups.verdicts[b];

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "semo/frontend/ast_json.hpp"
 #include "semo/frontend/parser.hpp"
@@ -22,6 +23,16 @@ void printSummaryLine(const DiagnosticEngine& diags) {
 }
 
 }  // namespace
+
+void addModelInput(nlohmann::json& root, const ModelInput& in) {
+  if (in.strategy) root["strategy"] = *in.strategy;
+  if (in.robotsDir) root["robots"] = *in.robotsDir;
+  nlohmann::json overrides = nlohmann::json::object();
+  if (in.crash) overrides["crash"] = *in.crash;
+  if (in.loss) overrides["loss"] = *in.loss;
+  if (in.fairLoss) overrides["fairLoss"] = *in.fairLoss;
+  if (!overrides.empty()) root["modelOptions"] = overrides;
+}
 
 int runParse(const ParseOptions& options) {
   SourceManager sources;

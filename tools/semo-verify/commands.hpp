@@ -4,13 +4,17 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
+
+#include <nlohmann/json_fwd.hpp>
 
 #include "semo/semantics/ir.hpp"
 
 namespace semo::cli {
 
-enum ExitCode { kOk = 0, kViolated = 1, kBadInput = 2, kLimit = 3 };
+// 4: a replay's running team departed from the counterexample (a bug of semo, never of the mission).
+enum ExitCode { kOk = 0, kViolated = 1, kBadInput = 2, kLimit = 3, kDiverged = 4 };
 
 struct ParseOptions {
   std::string mission;
@@ -82,6 +86,25 @@ struct SimulateOptions {
   bool keepRunning = false;  // go on after the world's goal is reached, to --duration
 };
 
+struct ReplayOptions {
+  std::string trace;                 // a `check --json` output, or one counterexample object
+  ModelInput model;                  // empty fields: as the trace file records them
+  std::optional<std::string> property, world;
+  std::size_t loops = 3;             // a lasso's loop, taken this many times
+  std::string settle = "10s";        // free run after a deadlock's last step
+  std::string pace = "500ms";        // simulated time between two steps
+  std::optional<std::string> traceOut, svg;
+  bool checkFingerprint = true;
+};
+
+// Records in a `check --json` root how the model was built (strategy, robots, overrides).
+void addModelInput(nlohmann::json& root, const ModelInput& in);
+
+// "60s", "60", "500ms", "2min" -> seconds (nullopt: not a duration).
+std::optional<double> parseDuration(std::string_view text);
+// MISSION.world.json next to the mission.
+std::string defaultWorldPath(const std::string& mission);
+
 // Writes through a temporary file and renames it, so that a failure never leaves half a file.
 bool writeAtomically(const std::string& path, const std::string& text);
 
@@ -95,5 +118,6 @@ int runCheckSmt(const CheckOptions& options, const ir::Model& model);
 int runExport(const ExportOptions& options);
 int runLint(const LintOptions& options);
 int runSimulate(const SimulateOptions& options);
+int runReplay(const ReplayOptions& options);
 
 }  // namespace semo::cli

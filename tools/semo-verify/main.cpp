@@ -112,6 +112,26 @@ int main(int argc, char** argv) {
   simulateCmd->add_flag("--check-conformance", simulate.checkConformance,
                         "Replay every step on the verified model as it happens; stop at the first step the model does not allow");
 
+  semo::cli::ReplayOptions replay;
+  CLI::App* replayCmd = app.add_subcommand("replay", "Make a counterexample of `check --json` happen in the running team: the simulator takes its "
+                                                     "steps one for one and shows the violation at the same step (specs/runtime.md)");
+  replayCmd->add_option("trace", replay.trace, "A `check --json` output, or one counterexample object (specs/trace.md)")->required();
+  replayCmd->add_option("mission", replay.model.input, "Mission file (default: the trace file's \"input\")");
+  replayCmd->add_option("--strategy,-s", replay.model.strategy, "Strategy file (default: the trace file's \"strategy\")");
+  replayCmd->add_option("--robots,-r", replay.model.robotsDir, "Folder of URDF files (default: the trace file's \"robots\")");
+  replayCmd->add_option("--crash", replay.model.crash, "As given to check (default: as the trace file records)")->check(CLI::Range(0, 100000));
+  replayCmd->add_option("--loss", replay.model.loss, "As given to check (default: as the trace file records)")
+      ->check(CLI::IsMember({"none", "publish", "events", "knowledge", "heartbeats", "all"}));
+  replayCmd->add_option("--property,-p", replay.property, "Which counterexample of the file (default: the first violated property)");
+  replayCmd->add_option("--world,-w", replay.world, "World file for the picture (default: MISSION.world.json when there is one)");
+  replayCmd->add_option("--loops", replay.loops, "A lasso's loop is taken this many times (default 3)");
+  replayCmd->add_option("--settle", replay.settle, "After a deadlock's last step, run freely this long to show nothing moves (default 10s)");
+  replayCmd->add_option("--pace", replay.pace, "Simulated time between two steps (default 500ms)");
+  replayCmd->add_option("--save-trace", replay.traceOut, "Write the run's trace as JSON (semo-simtrace)");
+  replayCmd->add_option("--svg", replay.svg, "Write a picture of the run: a timeline per robot");
+  replayCmd->add_flag("!--no-fingerprint", replay.checkFingerprint,
+                      "Replay even when the trace's model fingerprint differs (the mission read through another path)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -128,6 +148,7 @@ int main(int argc, char** argv) {
   if (*lintCmd) return semo::cli::runLint(lint);
   if (*checkCmd) return semo::cli::runCheck(check);
   if (*exportCmd) return semo::cli::runExport(exportOptions);
+  if (*replayCmd) return semo::cli::runReplay(replay);
   if (*simulateCmd) {
     if (!seeds.empty()) {
       const auto dots = seeds.find("..");

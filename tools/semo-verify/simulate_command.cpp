@@ -20,18 +20,6 @@ namespace semo::cli {
 
 namespace {
 
-// "60s", "60", "500ms", "2min" -> seconds.
-std::optional<double> parseDuration(std::string_view text) {
-  double value = 0;
-  const auto r = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (r.ec != std::errc() || !(value >= 0)) return std::nullopt;
-  const std::string_view unit = text.substr(static_cast<std::size_t>(r.ptr - text.data()));
-  if (unit.empty() || unit == "s") return value;
-  if (unit == "ms") return value / 1000.0;
-  if (unit == "min") return value * 60.0;
-  return std::nullopt;
-}
-
 // The closest any robot came to an obstacle over the run (metres; 0: it reached one), from the
 // trace's pose samples.
 // A robot whose centre is this close has its front on the obstacle: it has reached it.
@@ -99,8 +87,7 @@ int runSimulate(const SimulateOptions& options) {
 
   std::string worldPath = options.world.value_or("");
   if (worldPath.empty()) {
-    std::filesystem::path m(options.mission);
-    worldPath = (m.parent_path() / (m.stem().string() + ".world.json")).string();
+    worldPath = defaultWorldPath(options.mission);
     if (!std::filesystem::exists(worldPath)) {
       std::cerr << "semo-verify: error: no world given and no " << worldPath << " next to the mission; give one with --world (runtime/WORLD.md)\n";
       return kBadInput;

@@ -14,16 +14,19 @@ namespace semo::checker {
 
 class ConformanceMonitor final : public runtime::StepObserver {
  public:
-  // `model` must be the IR the tables were projected from.
-  ConformanceMonitor(const ir::Model& model, const runtime::MissionTables& tables);
+  // `model` must be the IR the tables were projected from. `checkInvariants`: also stop at the
+  // first state that violates one of the model's invariants (a replay checks its one property itself).
+  ConformanceMonitor(const ir::Model& model, const runtime::MissionTables& tables, bool checkInvariants = true);
   bool onStep(const runtime::StepReport& step) override;
   [[nodiscard]] std::string why() const override { return why_; }
+  [[nodiscard]] const Stepper& stepper() const { return stepper_; }
 
  private:
   Stepper stepper_;
   const runtime::MissionTables& tables_;
   Stepper::State current_;
   std::string why_;
+  bool checkInvariants_ = true;
   bool mismatch(const runtime::StepReport& step, const std::string& what, const Stepper::State& expected);
 };
 
