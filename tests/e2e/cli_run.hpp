@@ -4,6 +4,7 @@
 // The including test defines SEMO_SOURCE_DIR, SEMO_VERIFY and SEMO_E2E_WORK.
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
