@@ -1,6 +1,7 @@
 // The runtime's hot calls allocate nothing once their objects are built and warmed up: 10,000
-// calls each of the random streams, the loss models, knowledge merges, channel pushes and pops and
-// static schedule iterations, measured by the test executable's counting operator new.
+// calls each of the random streams, the loss models, knowledge merges, channel pushes and pops,
+// static schedule iterations and the transport's send, multicast, poll, encode and decode, measured
+// by the test executable's counting operator new.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -11,6 +12,7 @@
 #include "semo/runtime/knowledge.hpp"
 #include "semo/runtime/loss.hpp"
 #include "semo/runtime/random.hpp"
+#include "semo/runtime/transport.hpp"
 
 namespace semo::runtime {
 namespace {
@@ -114,6 +116,49 @@ TEST(SteadyState, StaticScheduleIterationsAllocateNothing) {
   EXPECT_EQ(meter.allocations(), 0u);
   EXPECT_TRUE(ok);
   EXPECT_TRUE(schedule.atInitialTokens());
+}
+
+TEST(SteadyState, TransportSendPollAndCodecAllocateNothing) {
+  InProcessTransport::Options options;
+  options.robots = 4;
+  options.queueCapacity = 8;
+  std::string error;
+  options.loss = *LossModel::parse("burst:3", error);
+  options.loss.p = 0.1;
+  options.seed = 5;
+  InProcessTransport transport(options);
+  const std::uint32_t team[] = {0, 1, 2, 3};
+  RandomStream rng(6);
+  std::uint64_t sink = 0;
+  auto round = [&](std::uint64_t i) {
+    Packet packet;
+    packet.kind = Packet::Kind::Publish;
+    packet.sender = static_cast<std::uint32_t>(rng.below(4));
+    packet.sequence = i;
+    if (rng.bernoulli(0.5)) {
+      transport.multicast(team, packet);
+    } else {
+      transport.send(static_cast<std::uint32_t>(rng.below(4)), packet);
+    }
+    const PacketBytes bytes = encodePacket(packet);
+    Packet back;
+    if (decodePacket(bytes, back) == DecodeError::None) sink += back.sequence;
+    for (std::uint32_t q = 0; q < 4; ++q) {
+      if (rng.bernoulli(0.6) && transport.poll(q, back)) sink += back.sender + 1;
+    }
+  };
+  for (std::uint64_t i = 0; i < 1000; ++i) round(i);  // warm-up: queues filled and drained
+  AllocationMeter meter;
+  for (std::uint64_t i = 0; i < kCalls; ++i) round(i);
+  transport.crash(2);
+  for (std::uint64_t i = 0; i < kCalls; ++i) round(i);
+  EXPECT_EQ(meter.allocations(), 0u);
+  const TransportCounters c = transport.counters();
+  EXPECT_GT(c.delivered, 0u);
+  EXPECT_GT(c.lost, 0u);
+  EXPECT_GT(c.droppedFull, 0u);
+  EXPECT_GT(c.discarded, 0u);
+  EXPECT_NE(sink, 0u);
 }
 
 }  // namespace
