@@ -14,6 +14,7 @@
 #include "semo/runtime/knowledge.hpp"
 #include "semo/runtime/random.hpp"
 #include "semo/runtime/simulator.hpp"
+#include "team_dataflow.hpp"
 
 namespace semo::runtime::detail {
 
@@ -162,6 +163,10 @@ class Team {
   std::vector<std::int32_t> scratchA_, scratchB_;
   std::vector<std::uint8_t> scratchC_;
   std::vector<std::int32_t> varSlot_;  // per IR variable of kind Knows: the robot's knowledge slot
+
+  // ---- team_dataflow.cpp: each robot's static schedules, once per control period
+  void stepDataflow();
+  TeamDataflow dataflow_{t_, trace_.summary};  // last: built from the tables once the rest is
 };
 
 }  // namespace semo::runtime::detail
