@@ -70,7 +70,8 @@ runtime::DataflowTable dataflowTable(const sdf::TaskGraph& graph, const sdf::Tas
     }
     for (const sdf::ScenarioChannel& sc : s.channels) {
       const sdf::TaskChannel& ch = graph.channels[sc.channel];
-      st.channels.push_back({sc.channel, ch.fromTask, ch.toTask, sc.production, sc.consumption, sc.initialTokens, out.channels[sc.channel].capacity});
+      st.channels.push_back(
+          {sc.channel, ch.fromTask, ch.toTask, sc.production, sc.consumption, sc.initialTokens, out.channels[sc.channel].capacity});
     }
     // The schedule and period proven within the max-throughput bounds: the robot's capacities are
     // at least those bounds on every channel of the scenario, so the same schedule stays within them
@@ -101,7 +102,8 @@ std::optional<DataflowProjection> projectDataflow(const model::MissionModel& mis
   const std::size_t hitsBefore = shared.hits();
   DataflowProjection out;
   for (const sdf::TaskGraph& g : *graphs) {
-    auto robot = std::find_if(tables.robots.begin(), tables.robots.end(), [&](const runtime::RobotTable& r) { return r.name == g.robot; });
+    auto robot =
+        std::find_if(tables.robots.begin(), tables.robots.end(), [&](const runtime::RobotTable& r) { return r.name == g.robot; });
     if (robot == tables.robots.end()) continue;  // not a robot of these tables: nothing to run it on
     const sdf::TaskGraphAnalysis analysis = sdf::analyseTaskGraph(g, options, &shared);
     robot->dataflow = dataflowTable(g, analysis, tables.teams[robot->team]);

@@ -132,11 +132,14 @@ class Writer {
       const DataflowRunSummary& d = robots[r];
       std::uint64_t iterations = 0, ran = 0, full = 0;
       for (std::uint64_t n : d.iterations) iterations += n, ran += n > 0 ? 1 : 0;
-      for (std::size_t c = 0; c < d.capacity.size() && c < d.maxFill.size(); ++c) full += d.capacity[c] > 0 && d.maxFill[c] >= d.capacity[c] ? 1 : 0;
-      list += (r == 0 ? "\n      " : ",\n      ") + fmt::format("{{\"robot\": {}, \"iterations\": {}, \"scenariosRun\": {}, \"scenarios\": {}, "
-                                                          "\"notRun\": {}, \"channelsAtCapacity\": {}, \"channels\": {}, \"stalls\": {}, \"overflows\": {}}}",
-                                                          robot(static_cast<std::uint32_t>(r)), iterations, ran, d.scenarios.size(),
-                                                          d.notRun.size(), full, d.channels.size(), d.stalls, d.overflows);
+      for (std::size_t c = 0; c < d.capacity.size() && c < d.maxFill.size(); ++c) {
+        full += d.capacity[c] > 0 && d.maxFill[c] >= d.capacity[c] ? 1 : 0;
+      }
+      list += (r == 0 ? "\n      " : ",\n      ") +
+              fmt::format("{{\"robot\": {}, \"iterations\": {}, \"scenariosRun\": {}, \"scenarios\": {}, \"notRun\": {}, "
+                          "\"channelsAtCapacity\": {}, \"channels\": {}, \"stalls\": {}, \"overflows\": {}}}",
+                          robot(static_cast<std::uint32_t>(r)), iterations, ran, d.scenarios.size(), d.notRun.size(), full,
+                          d.channels.size(), d.stalls, d.overflows);
     }
     return list + (robots.empty() ? "]" : "\n    ]");
   }

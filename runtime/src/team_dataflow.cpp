@@ -18,7 +18,9 @@ TeamDataflow::TeamDataflow(const MissionTables& tables, TraceSummary& summary) {
   for (const RobotTable& r : tables.robots) any = any || !r.dataflow.tasks.empty();
   if (!any) return;
   std::map<std::string, Id, std::less<>> serviceIds;
-  const auto serviceId = [&](const std::string& name) { return serviceIds.try_emplace(name, static_cast<Id>(serviceIds.size())).first->second; };
+  const auto serviceId = [&](const std::string& name) {
+    return serviceIds.try_emplace(name, static_cast<Id>(serviceIds.size())).first->second;
+  };
   for (const CallTable& call : tables.calls) callService.push_back(serviceId(call.service));
   runners.reserve(tables.robots.size());
   summary.dataflow.resize(tables.robots.size());

@@ -77,7 +77,9 @@ void printDataflow(const runtime::MissionTables& t, const std::vector<runtime::D
       if (d.capacity[c] <= 0) continue;  // in no scenario with bounds
       ++channels;
       full += d.maxFill[c] >= d.capacity[c] ? 1 : 0;
-      if (d.maxFill[c] > fill) fill = d.maxFill[c], capacity = d.capacity[c], fullest = robotName(t, static_cast<std::uint32_t>(r)) + " " + d.channels[c];
+      if (d.maxFill[c] <= fill) continue;
+      fill = d.maxFill[c], capacity = d.capacity[c];
+      fullest = robotName(t, static_cast<std::uint32_t>(r)) + " " + d.channels[c];
     }
     for (const std::string& n : d.notRun) notRun.push_back(robotName(t, static_cast<std::uint32_t>(r)) + " " + n);
   }
@@ -85,7 +87,8 @@ void printDataflow(const runtime::MissionTables& t, const std::vector<runtime::D
   if (fill >= 0) std::cout << fmt::format(", largest fill {}/{} tokens ({})", fill, capacity, fullest);
   std::cout << fmt::format(", {} of {} channels reached their proven capacity, {} stalls, {} overflows\n", full, channels, stalls, overflows);
   if (!notRun.empty()) {
-    std::cout << fmt::format("  dataflow: {} scenarios not run, their analysis not sound (no bounds claimed): {}", notRun.size(), notRun.front());
+    std::cout << fmt::format("  dataflow: {} scenarios not run, their analysis not sound (no bounds claimed): {}", notRun.size(),
+                             notRun.front());
     if (notRun.size() > 1) std::cout << fmt::format("; ... ({} in all)", notRun.size());
     std::cout << "\n";
   }
@@ -139,14 +142,6 @@ int runSimulate(const SimulateOptions& options) {
   if (!translation) return kBadInput;
   runtime::MissionTables tables = codegen::project(*mission, *translation, sources);
   tables.modelFingerprint = checker::modelFingerprint(translation->model);
-  if (options.dataflow) {
-    // Its own diagnostics: a strategy whose task graphs do not fit together still simulates, without dataflow.
-    DiagnosticEngine dataflowDiags(sources);
-    if (!codegen::projectDataflow(*mission, tables, dataflowDiags)) {
-      for (const Diagnostic& d : dataflowDiags.diagnostics()) std::cerr << dataflowDiags.format(d);
-      std::cerr << "semo-verify: note: the robots' task graphs have errors (above): simulating without their dataflow\n";
-    }
-  }
 
   std::string worldPath = options.world.value_or("");
   if (worldPath.empty()) {
@@ -196,6 +191,15 @@ int runSimulate(const SimulateOptions& options) {
   if (options.seedsTo && (options.trace || options.svg)) {
     std::cerr << "semo-verify: error: --trace and --svg describe one run: use --seed, not --seeds\n";
     return kBadInput;
+  }
+  // Last before running, as it takes a while (the capacity proofs). Its own diagnostics: a strategy
+  // whose task graphs do not fit together still simulates, without dataflow.
+  if (options.dataflow) {
+    DiagnosticEngine dataflowDiags(sources);
+    if (!codegen::projectDataflow(*mission, tables, dataflowDiags)) {
+      for (const Diagnostic& d : dataflowDiags.diagnostics()) std::cerr << dataflowDiags.format(d);
+      std::cerr << "semo-verify: note: the robots' task graphs have errors (above): simulating without their dataflow\n";
+    }
   }
   const runtime::TaskLibrary library = runtime::TaskLibrary::standard();
   auto runOne = [&](std::uint64_t seed) {
