@@ -34,7 +34,7 @@ struct DataflowChannel {
 struct ScenarioTable {
   std::string name;  // as the SDF analysis names it: "SEARCH_MODE", "RETREAT_MODE[walk]"
   std::string mode;
-  std::uint32_t modeIndex = 0xffffffffu;  // into TeamTable::modes of the robot's team
+  std::uint32_t modeIndex = 0xffffffffu;  // into TeamTable::modes of the robot's team (kNone: none)
   std::vector<std::string> services;      // the services running, one per plan that calls any
   std::vector<std::string> planServices;  // per plan of the team: the service it runs here ("" when it calls none)
 
