@@ -11,6 +11,8 @@ StaticSchedule::StaticSchedule(std::vector<Firing> schedule, std::vector<Channel
   for (const Channel& c : channels_) tasks = std::max({tasks, c.from + 1, c.to + 1});
   tokens_.reserve(channels_.size());
   for (const Channel& c : channels_) tokens_.emplace_back(c.capacity, c.initialTokens);
+  maxTokens_.reserve(channels_.size());
+  for (const Channel& c : channels_) maxTokens_.push_back(c.initialTokens);
   // Counting sort of the channels by task; a self-loop (from == to) is one port of its task.
   portStart_.assign(tasks + 1, 0);
   for (const Channel& c : channels_) {
@@ -53,9 +55,24 @@ bool StaticSchedule::fireOnce(Id task) {
   }
   for (std::uint32_t i = first; i < last; ++i) {
     const Id c = ports_[i];
-    if (channels_[c].from == task) tokens_[c].tryProduce(channels_[c].production);
+    if (channels_[c].from == task) {
+      tokens_[c].tryProduce(channels_[c].production);
+      maxTokens_[c] = std::max(maxTokens_[c], tokens_[c].tokens());
+    }
   }
   return true;
+}
+
+StaticSchedule StaticSchedule::forScenario(const ScenarioTable& scenario) {
+  std::vector<Firing> schedule;
+  schedule.reserve(scenario.schedule.size());
+  for (const ScenarioTable::Firing& f : scenario.schedule) schedule.push_back({f.task, f.repetitions});
+  std::vector<Channel> channels;
+  channels.reserve(scenario.channels.size());
+  for (const ScenarioTable::Channel& c : scenario.channels) {
+    channels.push_back({c.from, c.to, c.production, c.consumption, c.initialTokens, c.capacity});
+  }
+  return {std::move(schedule), std::move(channels)};
 }
 
 void StaticSchedule::reset() {

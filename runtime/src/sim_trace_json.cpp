@@ -124,6 +124,26 @@ class Writer {
     out_ += "]}";
   }
 
+  // Per robot, one line of counts (specs/runtime.md, "Dataflow"): iterations, the scenarios that ran
+  // of those it has, the channels that reached their proven capacity, stalls and overflows.
+  std::string dataflow(const std::vector<DataflowRunSummary>& robots) const {
+    std::string list = "[";
+    for (std::size_t r = 0; r < robots.size(); ++r) {
+      const DataflowRunSummary& d = robots[r];
+      std::uint64_t iterations = 0, ran = 0, full = 0;
+      for (std::uint64_t n : d.iterations) iterations += n, ran += n > 0 ? 1 : 0;
+      for (std::size_t c = 0; c < d.capacity.size() && c < d.maxFill.size(); ++c) {
+        full += d.capacity[c] > 0 && d.maxFill[c] >= d.capacity[c] ? 1 : 0;
+      }
+      list += (r == 0 ? "\n      " : ",\n      ") +
+              fmt::format("{{\"robot\": {}, \"iterations\": {}, \"scenariosRun\": {}, \"scenarios\": {}, \"notRun\": {}, "
+                          "\"channelsAtCapacity\": {}, \"channels\": {}, \"stalls\": {}, \"overflows\": {}}}",
+                          robot(static_cast<std::uint32_t>(r)), iterations, ran, d.scenarios.size(), d.notRun.size(), full,
+                          d.channels.size(), d.stalls, d.overflows);
+    }
+    return list + (robots.empty() ? "]" : "\n    ]");
+  }
+
   void summary(const TraceSummary& s) {
     out_ += "  \"summary\": {\n";
     auto field = [&](const char* key, const std::string& value, bool last = false) {
@@ -158,7 +178,8 @@ class Writer {
     field("outsideAssumptions", quote(s.outsideAssumptions));
     list = "[";
     for (std::size_t i = 0; i < s.violations.size(); ++i) list += (i == 0 ? "" : ", ") + quote(s.violations[i]);
-    field("violations", list + "]", true);
+    field("violations", list + "]");
+    field("dataflow", dataflow(s.dataflow), true);
     out_ += "  }\n";
   }
 };

@@ -15,6 +15,7 @@
 #include "semo/runtime/random.hpp"
 #include "semo/runtime/replay.hpp"
 #include "semo/runtime/simulator.hpp"
+#include "team_dataflow.hpp"
 
 namespace semo::runtime::detail {
 
@@ -186,6 +187,10 @@ class Team {
   int forcedLoss_ = -1;  // -1: the loss model decides; 0: delivered; 1: lost
   static constexpr std::uint64_t kNoForcedMask = ~std::uint64_t{0};
   std::uint64_t forcedHeartbeatLoss_ = kNoForcedMask;  // bit i: the heartbeat to candidate i is lost
+
+  // ---- team_dataflow.cpp: each robot's static schedules, once per control period
+  void stepDataflow();
+  TeamDataflow dataflow_{t_, trace_.summary};  // last: built from the tables once the rest is
 };
 
 }  // namespace semo::runtime::detail

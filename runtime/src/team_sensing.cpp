@@ -143,6 +143,7 @@ void Team::stepBehaviours() {
     if (robots_[r].alive) bodies_[r].advanceTo(now());
     poses_[r] = bodies_[r].pose();
   }
+  stepDataflow();  // the scenarios of the calls under way run through the period now beginning
   for (Id robot = 0; robot < robots_.size() && !stopped_; ++robot) {
     RobotRun& r = robots_[robot];
     if (!r.alive) continue;

@@ -32,6 +32,7 @@ constexpr std::size_t kMaxScenariosPerMode = 256;
 
 // What one robot does in one plan of one mode.
 struct PlanUse {
+  Index plan = model::kNone;       // into the team's plans
   std::vector<std::string> calls;  // primitive and group services, in order, without repeats
 };
 
@@ -141,6 +142,7 @@ class Generator {
     ModeUse use;
     for (const model::PlanSetting& setting : mode.settings) {
       PlanUse plan;
+      plan.plan = setting.plan;
       std::vector<Index> stack{setting.service};
       visitComposite(setting.service, robot, use, plan, stack);
       use.plans.push_back(std::move(plan));
@@ -400,8 +402,9 @@ class Generator {
       }
       // Scenarios: one service per plan (plans without calls contribute nothing).
       std::vector<std::vector<std::string>> choices;
+      std::vector<std::uint32_t> choicePlans;
       for (const PlanUse& p : use.plans) {
-        if (!p.calls.empty()) choices.push_back(p.calls);
+        if (!p.calls.empty()) choices.push_back(p.calls), choicePlans.push_back(static_cast<std::uint32_t>(p.plan));
       }
       for (const auto& cs : choices) {
         for (const std::string& s : cs) serviceActivation(s);
@@ -424,6 +427,7 @@ class Generator {
           const std::string& service = choices[p][pick[p]];
           several = several || choices[p].size() > 1;
           s.services.push_back(service);
+          s.plans.push_back(choicePlans[p]);
           const Activation& a = byService.at(service);
           channels.insert(channels.end(), a.channels.begin(), a.channels.end());
         }

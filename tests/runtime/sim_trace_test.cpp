@@ -63,7 +63,7 @@ TEST(SimTraceJson, IsDeterministicAndParsesBack) {
 
   const nlohmann::json& s = j["summary"];
   for (const char* key : {"goalStated", "completed", "completedAt", "modeChanges", "leaderChanges", "convergedAt", "messagesSent",
-                          "messagesLost", "stepsChecked", "mismatches", "outsideAssumptions", "violations"}) {
+                          "messagesLost", "stepsChecked", "mismatches", "outsideAssumptions", "violations", "dataflow"}) {
     EXPECT_TRUE(s.contains(key)) << key;
   }
   EXPECT_EQ(s["completedAt"], 58.25);
@@ -75,6 +75,12 @@ TEST(SimTraceJson, IsDeterministicAndParsesBack) {
   EXPECT_TRUE(s["convergedAt"][1]["t"].is_null());
   EXPECT_EQ(s["messagesLost"], 2);
   EXPECT_EQ(s["violations"], (nlohmann::json{"P1"}));
+  ASSERT_EQ(s["dataflow"].size(), 3u);
+  EXPECT_EQ(s["dataflow"][0], (nlohmann::json{{"robot", "turtle_0"}, {"iterations", 1234}, {"scenariosRun", 2}, {"scenarios", 3},
+                                              {"notRun", 0}, {"channelsAtCapacity", 1}, {"channels", 2}, {"stalls", 0}, {"overflows", 0}}));
+  EXPECT_EQ(s["dataflow"][1]["overflows"], 1);
+  EXPECT_EQ(s["dataflow"][2]["notRun"], 1);
+  EXPECT_EQ(s["dataflow"][2]["scenariosRun"], 0);
 }
 
 TEST(SimTraceJson, FixedPrecisionAndOneEventPerLine) {
@@ -87,6 +93,9 @@ TEST(SimTraceJson, FixedPrecisionAndOneEventPerLine) {
   tiny.poses.push_back({1e-9, {{-1e-9, 0, -0.0}}});
   EXPECT_NE(simTraceToJson(tiny).find("{\"t\": 0.000000, \"robots\": [[0.000000, 0.000000, 0.000000]]}"), std::string::npos);
   EXPECT_TRUE(nlohmann::json::parse(simTraceToJson(SimTrace{})).is_object());
+  EXPECT_NE(text.find("\n      {\"robot\": \"ev3_1\", \"iterations\": 7, \"scenariosRun\": 1, \"scenarios\": 1, \"notRun\": 0, "
+                      "\"channelsAtCapacity\": 1, \"channels\": 1, \"stalls\": 0, \"overflows\": 1},\n"),
+            std::string::npos);  // one robot's dataflow per line
 }
 
 std::size_t count(const std::string& text, const std::string& what) {

@@ -1,14 +1,17 @@
 // The runtime's hot calls allocate nothing once their objects are built and warmed up: 10,000
 // calls each of the random streams, the loss models, knowledge merges, channel pushes and pops,
-// static schedule iterations and the transport's send, multicast, poll, encode and decode, measured
-// by the test executable's counting operator new.
+// static schedule iterations, a robot's dataflow (scenario switches and the iterations of a
+// control period), and the transport's send, multicast, poll, encode and decode, measured by the
+// test executable's counting operator new.
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
 
 #include "allocation_counter.hpp"
+#include "dataflow_sample.hpp"
 #include "semo/runtime/channel.hpp"
+#include "semo/runtime/dataflow.hpp"
 #include "semo/runtime/knowledge.hpp"
 #include "semo/runtime/loss.hpp"
 #include "semo/runtime/random.hpp"
@@ -159,6 +162,25 @@ TEST(SteadyState, TransportSendPollAndCodecAllocateNothing) {
   EXPECT_GT(c.droppedFull, 0u);
   EXPECT_GT(c.discarded, 0u);
   EXPECT_NE(sink, 0u);
+}
+
+TEST(SteadyState, DataflowRunnerAllocatesNothing) {
+  const DataflowTable table = sample::chainTable();
+  DataflowRunner runner(table);  // every schedule and counter is allocated here
+  runner.select(0);
+  ASSERT_GT(runner.advance(50000).iterations, 0u);  // warm-up
+  std::uint64_t iterations = 0;
+  bool stalled = false;
+  AllocationMeter meter;
+  for (int i = 0; i < kCalls; ++i) {
+    runner.select(static_cast<Id>((i / 7) % 3));  // now and then another scenario (2 is unsound: it idles)
+    const DataflowRunner::Advance done = runner.advance(50000);
+    iterations += done.iterations;
+    stalled = stalled || done.stall != StaticSchedule::Stall::None;
+  }
+  EXPECT_EQ(meter.allocations(), 0u);
+  EXPECT_FALSE(stalled);
+  EXPECT_GT(iterations, static_cast<std::uint64_t>(kCalls));
 }
 
 }  // namespace

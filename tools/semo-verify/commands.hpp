@@ -84,6 +84,7 @@ struct SimulateOptions {
   std::optional<std::string> trace, svg;
   bool checkConformance = false;
   bool keepRunning = false;  // go on after the world's goal is reached, to --duration
+  bool dataflow = true;      // project and run each robot's task graph (--no-dataflow: skip its analysis)
 };
 
 struct ReplayOptions {

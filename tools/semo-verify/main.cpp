@@ -109,6 +109,8 @@ int main(int argc, char** argv) {
   simulateCmd->add_option("--trace", simulate.trace, "Write the run's trace as JSON (semo-simtrace)");
   simulateCmd->add_option("--svg", simulate.svg, "Write a picture of the run: trajectories and a timeline per robot");
   simulateCmd->add_flag("--keep-running", simulate.keepRunning, "Go on after the world's goal is reached, until --duration");
+  simulateCmd->add_flag("--no-dataflow{false}", simulate.dataflow,
+                        "Do not run the robots' task graphs (skips their analysis, which proves the channel capacities at startup)");
   simulateCmd->add_flag("--check-conformance", simulate.checkConformance,
                         "Replay every step on the verified model as it happens; stop at the first step the model does not allow");
 

@@ -13,6 +13,7 @@
 #include "semo/checker/conformance.hpp"
 #include "semo/checker/fingerprint.hpp"
 #include "semo/codegen/project.hpp"
+#include "semo/codegen/project_dataflow.hpp"
 #include "semo/semantics/load.hpp"
 #include "semo/semantics/translate.hpp"
 
@@ -36,6 +37,50 @@ double closestToObstacle(const runtime::SimTrace& trace) {
 }
 
 std::string robotName(const runtime::MissionTables& t, std::uint32_t r) { return r < t.robots.size() ? t.robots[r].name : "none"; }
+
+// 1234567 -> "1,234,567"
+std::string grouped(std::uint64_t n) {
+  std::string digits = std::to_string(n), out;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
+// The robots' dataflow in one line (specs/runtime.md, "Dataflow"), and the scenarios not run.
+void printDataflow(const runtime::MissionTables& t, const std::vector<runtime::DataflowRunSummary>& robots) {
+  std::uint64_t iterations = 0, scenarios = 0, stalls = 0, overflows = 0, channels = 0, full = 0, running = 0;
+  std::int64_t fill = -1, capacity = 0;
+  std::string fullest;
+  std::vector<std::string> notRun;
+  for (std::size_t r = 0; r < robots.size(); ++r) {
+    const runtime::DataflowRunSummary& d = robots[r];
+    std::uint64_t mine = 0;
+    for (std::uint64_t n : d.iterations) mine += n, scenarios += n > 0 ? 1 : 0;
+    iterations += mine;
+    running += mine > 0 ? 1 : 0;
+    stalls += d.stalls, overflows += d.overflows;
+    for (std::size_t c = 0; c < d.capacity.size(); ++c) {
+      if (d.capacity[c] <= 0) continue;  // in no scenario with bounds
+      ++channels;
+      full += d.maxFill[c] >= d.capacity[c] ? 1 : 0;
+      if (d.maxFill[c] <= fill) continue;
+      fill = d.maxFill[c], capacity = d.capacity[c];
+      fullest = robotName(t, static_cast<std::uint32_t>(r)) + " " + d.channels[c];
+    }
+    for (const std::string& n : d.notRun) notRun.push_back(robotName(t, static_cast<std::uint32_t>(r)) + " " + n);
+  }
+  std::cout << fmt::format("  dataflow: {} iterations of {} scenarios on {} robots", grouped(iterations), scenarios, running);
+  if (fill >= 0) std::cout << fmt::format(", largest fill {}/{} tokens ({})", fill, capacity, fullest);
+  std::cout << fmt::format(", {} of {} channels reached their proven capacity, {} stalls, {} overflows\n", full, channels, stalls, overflows);
+  if (!notRun.empty()) {
+    std::cout << fmt::format("  dataflow: {} scenarios not run, their analysis not sound (no bounds claimed): {}", notRun.size(),
+                             notRun.front());
+    if (notRun.size() > 1) std::cout << fmt::format("; ... ({} in all)", notRun.size());
+    std::cout << "\n";
+  }
+}
 
 void printSummary(const runtime::MissionTables& t, const runtime::SimTrace& trace, bool checked) {
   const runtime::TraceSummary& s = trace.summary;
@@ -64,6 +109,7 @@ void printSummary(const runtime::MissionTables& t, const runtime::SimTrace& trac
   }
   std::cout << fmt::format("  messages: {} sent, {} lost\n", s.messagesSent, s.messagesLost);
   if (!trace.world.obstacles.empty()) std::cout << fmt::format("  closest to an obstacle: {:.3f} m\n", closestToObstacle(trace));
+  if (!s.dataflow.empty()) printDataflow(t, s.dataflow);
   if (!s.outsideAssumptions.empty()) std::cout << "  outside the model's assumptions: " << s.outsideAssumptions << " (conformance no longer claimed from there)\n";
   if (checked) {
     std::cout << fmt::format("  conformance: {} steps replayed on the model, {}\n", s.stepsChecked,
@@ -133,6 +179,15 @@ int runSimulate(const SimulateOptions& options) {
     std::cerr << "semo-verify: error: --trace and --svg describe one run: use --seed, not --seeds\n";
     return kBadInput;
   }
+  // Last before running, as it takes a while (the capacity proofs). Its own diagnostics: a strategy
+  // whose task graphs do not fit together still simulates, without dataflow.
+  if (options.dataflow) {
+    DiagnosticEngine dataflowDiags(sources);
+    if (!codegen::projectDataflow(*mission, tables, dataflowDiags)) {
+      for (const Diagnostic& d : dataflowDiags.diagnostics()) std::cerr << dataflowDiags.format(d);
+      std::cerr << "semo-verify: note: the robots' task graphs have errors (above): simulating without their dataflow\n";
+    }
+  }
   const runtime::TaskLibrary library = runtime::TaskLibrary::standard();
   auto runOne = [&](std::uint64_t seed) {
     sim.seed = seed;
@@ -160,6 +215,7 @@ int runSimulate(const SimulateOptions& options) {
 
   // Many seeds: one line of statistics per measure.
   std::uint64_t completed = 0, mismatched = 0, outside = 0, runs = 0;
+  std::uint64_t dataflowIterations = 0, dataflowStalls = 0, dataflowOverflows = 0;
   double completionSum = 0, completionMax = 0, takeoverMax = -1;
   double closestMin = std::numeric_limits<double>::infinity(), closestMax = 0;
   std::uint64_t reachedObstacle = 0;
@@ -173,6 +229,10 @@ int runSimulate(const SimulateOptions& options) {
       std::cout << "seed " << seed << ": " << s.violations.front() << "\n";
     }
     if (!s.outsideAssumptions.empty()) ++outside;
+    for (const runtime::DataflowRunSummary& d : s.dataflow) {
+      for (std::uint64_t n : d.iterations) dataflowIterations += n;
+      dataflowStalls += d.stalls, dataflowOverflows += d.overflows;
+    }
     if (!trace.world.obstacles.empty()) {
       const double closest = closestToObstacle(trace);
       closestMin = std::min(closestMin, closest), closestMax = std::max(closestMax, closest);
@@ -192,6 +252,10 @@ int runSimulate(const SimulateOptions& options) {
                              closestMax, reachedObstacle);
   }
   if (outside > 0) std::cout << fmt::format("  {} runs left the model's assumptions\n", outside);
+  if (std::any_of(tables.robots.begin(), tables.robots.end(), [](const runtime::RobotTable& r) { return !r.dataflow.tasks.empty(); })) {
+    std::cout << fmt::format("  dataflow: {} iterations in all, {} stalls, {} overflows\n", grouped(dataflowIterations), dataflowStalls,
+                             dataflowOverflows);
+  }
   if (options.checkConformance) std::cout << fmt::format("  conformance: {} runs with a mismatch or a violated property\n", mismatched);
   return mismatched == 0 ? kOk : kViolated;
 }

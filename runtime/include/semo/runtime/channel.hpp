@@ -116,6 +116,9 @@ class StaticSchedule {
   };
 
   StaticSchedule(std::vector<Firing> schedule, std::vector<Channel> channels);
+  // The schedule of a projected scenario (dataflow_tables.hpp), over its channels with the robot's
+  // proven capacities; channel c here is ScenarioTable::channels[c].
+  static StaticSchedule forScenario(const ScenarioTable& scenario);
 
   // Runs one iteration, calling fire(task) after each firing's tokens have moved. Stops at the first
   // firing that would block or overflow and returns false: stall(), stalledTask() and
@@ -132,7 +135,7 @@ class StaticSchedule {
     return true;
   }
 
-  // Every channel back at its initial tokens, and the stall cleared.
+  // Every channel back at its initial tokens, and the stall cleared (maxTokens() is kept).
   void reset();
 
   [[nodiscard]] Stall stall() const { return stall_; }
@@ -142,6 +145,8 @@ class StaticSchedule {
   [[nodiscard]] std::size_t channelCount() const { return channels_.size(); }
   [[nodiscard]] const Channel& channel(Id c) const { return channels_[c]; }
   [[nodiscard]] const TokenCounter& tokens(Id c) const { return tokens_[c]; }
+  // The most tokens channel c has held since the schedule was built (its initial tokens at least).
+  [[nodiscard]] std::int64_t maxTokens(Id c) const { return maxTokens_[c]; }
   // Whether every channel holds its initial tokens (true after each complete iteration).
   [[nodiscard]] bool atInitialTokens() const;
 
@@ -152,6 +157,7 @@ class StaticSchedule {
   std::vector<Firing> schedule_;
   std::vector<Channel> channels_;
   std::vector<TokenCounter> tokens_;
+  std::vector<std::int64_t> maxTokens_;
   // Per task, the channels it touches (as consumer, producer or both): ports_[portStart_[t] ..
   // portStart_[t + 1]). Built once so a firing looks at its own channels only.
   std::vector<std::uint32_t> portStart_;

@@ -64,6 +64,17 @@ struct LeaderChange {
   double sinceCrash = -1;  // seconds since the previous leader crashed, when it did
 };
 
+// One robot's dataflow over the run (specs/runtime.md, "Dataflow"): what its static schedules did
+// on channels of the proven capacities.
+struct DataflowRunSummary {
+  std::vector<std::string> scenarios;           // per scenario of its task graph: its name
+  std::vector<std::uint64_t> iterations;        // per scenario: iterations completed
+  std::vector<std::string> channels;            // per channel: its name
+  std::vector<std::int64_t> capacity, maxFill;  // per channel: the proven capacity it ran with, the most tokens it held
+  std::uint64_t stalls = 0, overflows = 0;      // iterations that could not complete (impossible by the proof)
+  std::vector<std::string> notRun;              // scenarios never run, their analysis not sound: "NAME: why"
+};
+
 struct TraceSummary {
   bool goalStated = false;      // the world states the mission's goal
   bool completed = false;       // it was reached (without a goal: every live robot finished)
@@ -76,6 +87,7 @@ struct TraceSummary {
   std::uint64_t mismatches = 0;
   std::string outsideAssumptions;  // non-empty: from this point the run left the model's assumptions (why)
   std::vector<std::string> violations;
+  std::vector<DataflowRunSummary> dataflow;  // per robot (empty: the tables hold no dataflow)
 };
 
 struct SimTrace {

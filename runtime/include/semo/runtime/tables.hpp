@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "semo/runtime/dataflow_tables.hpp"
 #include "semo/runtime/kinematics.hpp"
 
 namespace semo::runtime {
@@ -246,6 +247,7 @@ struct RobotTable {
   std::vector<Discover> discoverRules;
   // per entry of `knowledge`: [teacher * (facts + 1) + count] -> the rule "learns from teacher, now holds count"
   std::vector<std::vector<Id>> learnRule;
+  DataflowTable dataflow;  // its task graph, proven capacities and static schedules (empty: not projected)
 };
 
 // ------------------------------------------------------------------ the abstraction function

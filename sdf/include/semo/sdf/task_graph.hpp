@@ -78,6 +78,7 @@ struct Scenario {
   std::string name;  // the mode, and the service picked in plans with several calls
   std::string mode;
   std::vector<std::string> services;   // the services running
+  std::vector<std::uint32_t> plans;    // per service: the plan of the team that calls it (generated graphs only)
   std::vector<std::uint32_t> tasks;    // active tasks (the control task first)
   std::vector<ScenarioChannel> channels;
 };
