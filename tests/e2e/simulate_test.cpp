@@ -2,60 +2,15 @@
 // specs/examples, with conformance checked on every step, and the traces it writes read back.
 #include <gtest/gtest.h>
 
-#include <array>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
+#include <algorithm>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
-#include <regex>
-#include <sstream>
-#include <string>
-#include <sys/wait.h>
+
+#include "simulate_cli.hpp"
 
 namespace {
 
-namespace fs = std::filesystem;
-
-struct CliRun {
-  int exit = -1;
-  std::string out, err;
-};
-
-fs::path workDir(const std::string& name) {
-  fs::path dir = fs::path(SEMO_E2E_WORK) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Runs semo-verify with `args` (already quoted where needed), from the source tree.
-CliRun verify(const std::string& args, const fs::path& dir) {
-  const fs::path err = dir / "stderr.txt";
-  const std::string command = "cd '" SEMO_SOURCE_DIR "' && '" SEMO_VERIFY "' " + args + " 2>'" + err.string() + "'";
-  CliRun r;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return r;
-  std::array<char, 4096> buffer{};
-  std::size_t n = 0;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) r.out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  r.exit = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.err = slurp(err);
-  return r;
-}
-
-double number(const std::string& text, const std::string& pattern) {
-  std::smatch m;
-  if (!std::regex_search(text, m, std::regex(pattern))) return -1;
-  return std::stod(m[1].str());
-}
+using namespace semo_e2e;
 
 const std::string kScouting = "specs/examples/scouting/scouting.semo -s specs/examples/scouting/strategy.xml";
 const std::string kSwarm3 = "specs/examples/swarm/swarm3.semo -s specs/examples/swarm/strategy.xml";
