@@ -60,9 +60,10 @@ case "$mode" in
   fuzz)
     build build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DSEMO_FUZZ=ON
     seconds="${FUZZ_SECONDS:-300}"
-    # Seed corpora: the project's own missions and strategies.
-    mkdir -p build-fuzz/corpus-fuzz_mission_parser build-fuzz/corpus-fuzz_strategy_reader build-fuzz/corpus-fuzz_ir_reader \
-      build-fuzz/corpus-fuzz_sdf3_reader build-fuzz/corpus-fuzz_taskgraph_reader
+    targets=(fuzz_mission_parser fuzz_strategy_reader fuzz_ir_reader fuzz_sdf3_reader fuzz_taskgraph_reader
+             fuzz_trace_reader fuzz_world_reader)
+    # Seed corpora: the project's own inputs, and the malformed ones of the diagnostics tests.
+    for target in "${targets[@]}"; do mkdir -p "build-fuzz/corpus-$target"; done
     for f in specs/benchmarks/sdf3/*.xml tests/diagnostics/sdf3/*.xml; do
       cp "$f" "build-fuzz/corpus-fuzz_sdf3_reader/$(echo "$f" | tr / _)"
     done
@@ -76,7 +77,15 @@ case "$mode" in
     for f in specs/examples/*/strategy.xml tests/diagnostics/common/*.xml; do
       cp "$f" "build-fuzz/corpus-fuzz_strategy_reader/$(echo "$f" | tr / _)"
     done
-    for target in fuzz_mission_parser fuzz_strategy_reader fuzz_ir_reader fuzz_sdf3_reader fuzz_taskgraph_reader; do
+    # Traces: `check --json` of the fuzz target's own model (tests/fuzz/corpus/make_trace_seeds.py
+    # writes them), and the refused ones of the diagnostics tests.
+    for f in tests/fuzz/corpus/trace/*.json tests/diagnostics/trace/*.json; do
+      cp "$f" "build-fuzz/corpus-fuzz_trace_reader/$(echo "$f" | tr / _)"
+    done
+    for f in specs/examples/*/*.world.json tests/diagnostics/world/*.json; do
+      cp "$f" "build-fuzz/corpus-fuzz_world_reader/$(echo "$f" | tr / _)"
+    done
+    for target in "${targets[@]}"; do
       corpus="build-fuzz/corpus-$target"
       echo "== fuzzing $target for ${seconds}s"
       ./build-fuzz/tests/fuzz/"$target" -max_total_time="$seconds" -max_len=8192 -timeout=10 \

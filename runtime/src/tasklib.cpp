@@ -51,7 +51,7 @@ class GoTo final : public Behaviour {
   bool known_ = false;
 };
 
-// A group service's search (searchPaper, spreadOut): drives to the nearest place where a fact it does not hold
+// A group service's search (searchPaper): drives to the nearest place where a fact it does not hold
 // can be found; stands still once it knows every fact within its world.
 class Search final : public Behaviour {
  public:
@@ -66,6 +66,44 @@ class Search final : public Behaviour {
     }
     if (nearest == nullptr) ctx.body->command(0, 0);
     else steer(ctx, nearest->at, 0.8);
+    return false;
+  }
+};
+
+// spreadOut (group service): each robot claims one sector. It heads for the nearest sector it does
+// not know to be claimed (a fact site of the service's knowledge it does not hold) and, once it is
+// within the site's radius (where it finds the fact: its claim), stays there, whatever it learns
+// later: a robot never leaves its sector for another, so the team spreads over the area rather than
+// gathering at the last free sector. Only when a teammate of lower index stands in the same sector
+// (both reached it before either heard of the other's claim) does it yield and move on. One that
+// learns on its way that its sector was claimed re-aims at the nearest one still free as far as it
+// knows; one that knows every sector claimed stops where it is.
+class SpreadOut final : public Behaviour {
+ public:
+  void start(BehaviourContext& ctx) override { ctx.body->command(0, 0); }
+  bool step(BehaviourContext& ctx) override {
+    const Pose p = ctx.body->pose();
+    if (held_ != nullptr && sharedWithLowerIndex(ctx, *held_)) held_ = nullptr;
+    const FactSite* nearest = nullptr;
+    double best = 1e300;
+    for (const FactSite* site : ctx.unknownFacts) {
+      const double d = std::hypot(site->at.x - p.x, site->at.y - p.y);
+      if (d <= site->radius && held_ == nullptr) held_ = site;
+      if (d < best) best = d, nearest = site;
+    }
+    if (held_ != nullptr || nearest == nullptr) ctx.body->command(0, 0);
+    else steer(ctx, nearest->at, 0.8);
+    return false;
+  }
+
+ private:
+  const FactSite* held_ = nullptr;  // the sector it reached first as far as it knew: it stays there
+
+  static bool sharedWithLowerIndex(const BehaviourContext& ctx, const FactSite& site) {
+    for (std::size_t r = 0; r < ctx.robot; ++r) {
+      if (!(*ctx.alive)[r] || (*ctx.teams)[r] != (*ctx.teams)[ctx.robot]) continue;
+      if (std::hypot((*ctx.poses)[r].x - site.at.x, (*ctx.poses)[r].y - site.at.y) <= site.radius + 0.05) return true;
+    }
     return false;
   }
 };
@@ -324,7 +362,7 @@ TaskLibrary TaskLibrary::standard() {
   lib.add("pursue", [] { return std::make_unique<Pursue>(); });
   lib.add("runAway", [] { return std::make_unique<RunAway>(); });
   lib.add("wander", [] { return std::make_unique<Wander>(); });
-  lib.add("spreadOut", [] { return std::make_unique<Search>(); });  // claim the nearest unclaimed sector
+  lib.add("spreadOut", [] { return std::make_unique<SpreadOut>(); });
   lib.add("patrolArea", [] { return std::make_unique<Patrol>(); });
   lib.add("scatter", [] { return std::make_unique<Scatter>(); });
   lib.add("holdPosition", [] { return std::make_unique<Timed>(1.0, 0, 0); });  // stand still, then the final mode holds it

@@ -1,8 +1,9 @@
 // Fuzzes the trace reader (checker/trace_reader.hpp) on a fixed hand-written model with every kind
 // of trace: invariants, a valid end (deadlocks), an update that can leave its range, a rule with two
 // outcomes and an LTL property (lassos). Whatever it accepts is written back with traceToJson and
-// must read again to the same steps. Seeds: `semo-verify check --json` of the model below, and
-// tests/diagnostics/trace/*.json (whose models differ: they exercise the refusals).
+// must read again to the same steps. Seeds: `semo-verify check --json` of the model below, whole
+// and one counterexample at a time (tests/fuzz/corpus/trace/, written by make_trace_seeds.py there),
+// and tests/diagnostics/trace/*.json (whose models differ: they exercise the refusals).
 #include <cstddef>
 #include <cstdint>
 #include <string>
