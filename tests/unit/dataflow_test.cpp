@@ -4,6 +4,8 @@
 // up to it; one token less on a channel the run fills is caught as an overflow.
 #include <gtest/gtest.h>
 
+#include "mission_fixture.hpp"
+
 #include <algorithm>
 #include <memory>
 
@@ -18,27 +20,9 @@
 namespace semo {
 namespace {
 
-struct Loaded {
-  SourceManager sources;
-  std::optional<model::MissionModel> mission;
-  std::optional<Translation> translation;
-  runtime::MissionTables tables;
-  std::optional<runtime::World> world;
-};
+using Loaded = test::LoadedMission;
 
-std::unique_ptr<Loaded> load(const std::string& dir, const std::string& stem) {
-  auto l = std::make_unique<Loaded>();
-  DiagnosticEngine diags(l->sources);
-  const std::string base = std::string(SEMO_SOURCE_DIR) + "/specs/examples/" + dir + "/";
-  l->mission = loadMission({base + stem + ".semo", base + "strategy.xml", std::nullopt}, l->sources, diags);
-  if (!l->mission) return nullptr;
-  l->translation = translateMission(*l->mission, {}, l->sources, diags);
-  if (!l->translation) return nullptr;
-  l->tables = codegen::project(*l->mission, *l->translation, l->sources);
-  std::vector<runtime::WorldError> errors;
-  l->world = runtime::readWorld(base + stem + ".world.json", errors);
-  return l;
-}
+std::unique_ptr<Loaded> load(const std::string& dir, const std::string& stem) { return test::loadExample(dir, stem); }
 
 TEST(DataflowProjection, CapacitiesSchedulesAndPeriodsAreTheAnalysis) {
   auto l = load("scouting", "scouting");

@@ -4,6 +4,8 @@
 // reported as the violation.
 #include <gtest/gtest.h>
 
+#include "mission_fixture.hpp"
+
 #include <algorithm>
 
 #include "semo/checker/explicit_search.hpp"
@@ -17,25 +19,10 @@
 namespace semo {
 namespace {
 
-struct Loaded {
-  SourceManager sources;
-  std::optional<model::MissionModel> mission;
-  std::optional<Translation> translation;
-  runtime::MissionTables tables;
-};
+using Loaded = test::LoadedMission;
 
 // `mission` and `strategy` relative to specs/.
-std::unique_ptr<Loaded> load(const std::string& mission, const std::string& strategy) {
-  auto l = std::make_unique<Loaded>();
-  DiagnosticEngine diags(l->sources);
-  const std::string base = std::string(SEMO_SOURCE_DIR) + "/specs/";
-  l->mission = loadMission({base + mission, base + strategy, std::nullopt}, l->sources, diags);
-  if (!l->mission) return nullptr;
-  l->translation = translateMission(*l->mission, {}, l->sources, diags);
-  if (!l->translation) return nullptr;
-  l->tables = codegen::project(*l->mission, *l->translation, l->sources);
-  return l;
-}
+std::unique_ptr<Loaded> load(const std::string& mission, const std::string& strategy) { return test::loadSpec(mission, strategy); }
 
 // The checker's counterexample for `property`, read back as `replay` reads it.
 std::optional<checker::ReplayedTrace> counterexample(Loaded& l, const std::string& property) {

@@ -3,6 +3,8 @@
 // strategy's timing; a projection that differs from the IR in one row is caught at run time.
 #include <gtest/gtest.h>
 
+#include "mission_fixture.hpp"
+
 #include <algorithm>
 
 #include "semo/checker/conformance.hpp"
@@ -13,26 +15,10 @@
 namespace semo {
 namespace {
 
-struct Loaded {
-  SourceManager sources;
-  std::optional<model::MissionModel> mission;
-  std::optional<Translation> translation;
-  runtime::MissionTables tables;
-  std::optional<runtime::World> world;
-};
+using Loaded = test::LoadedMission;
 
 std::unique_ptr<Loaded> load(const std::string& dir, const std::string& stem, const std::string& strategy = "strategy.xml") {
-  auto l = std::make_unique<Loaded>();
-  DiagnosticEngine diags(l->sources);
-  const std::string base = std::string(SEMO_SOURCE_DIR) + "/specs/examples/" + dir + "/";
-  l->mission = loadMission({base + stem + ".semo", base + strategy, std::nullopt}, l->sources, diags);
-  if (!l->mission) return nullptr;
-  l->translation = translateMission(*l->mission, {}, l->sources, diags);
-  if (!l->translation) return nullptr;
-  l->tables = codegen::project(*l->mission, *l->translation, l->sources);
-  std::vector<runtime::WorldError> errors;
-  l->world = runtime::readWorld(base + stem + ".world.json", errors);
-  return l;
+  return test::loadExample(dir, stem, strategy);
 }
 
 TEST(Projection, EveryProgramRuleIsOneRowAndEveryVariableIsAbstracted) {
