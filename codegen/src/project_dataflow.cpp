@@ -25,24 +25,17 @@ DataflowTask::Kind taskKind(sdf::TaskKind k) {
   return DataflowTask::Kind::Service;
 }
 
-std::string boundsProblem(const char* which, const sdf::ChosenBounds& b) {
-  if (b.safety == sdf::ProofStatus::Proven && b.minimality == sdf::ProofStatus::Proven) return {};
-  std::string out = std::string(which) + " bounds: no overflow/underflow " + sdf::proofStatusName(b.safety);
-  if (!b.safetyNote.empty()) out += " (" + b.safetyNote + ")";
-  return out + ", minimality " + sdf::proofStatusName(b.minimality);
-}
-
-// Why a scenario is not sound, in the words `semo-verify sdf` uses (empty when it is).
-std::string unsoundReason(const sdf::ScenarioAnalysis& a) {
-  if (a.sound()) return {};
+// Why a scenario cannot run, in the words `semo-verify sdf` uses (empty when it can).
+std::string notProvenReason(const sdf::ScenarioAnalysis& a) {
+  if (a.runnable()) return {};
   if (!a.repetition.consistent()) return "inconsistent: " + a.repetition.error;
   if (!a.iteration.error.empty()) return "deadlock freedom unknown: " + a.iteration.error;
   if (!a.iteration.deadlockFree) return "an iteration deadlocks";
   if (!a.unbounded.error.empty()) return "period not computed: " + a.unbounded.error;
   if (!a.bounds.haveBounds) return "no buffer bounds: " + a.bounds.error;
-  std::string out = boundsProblem("deadlock-free", a.bounds.deadlockFree);
-  const std::string max = boundsProblem("max-throughput", a.bounds.maxThroughput);
-  return out.empty() ? max : max.empty() ? out : out + "; " + max;
+  const sdf::ChosenBounds& b = a.bounds.maxThroughput;
+  std::string out = std::string("max-throughput bounds: no overflow/underflow ") + sdf::proofStatusName(b.safety);
+  return b.safetyNote.empty() ? out : out + " (" + b.safetyNote + ")";
 }
 
 }  // namespace
@@ -86,8 +79,8 @@ runtime::DataflowTable dataflowTable(const sdf::TaskGraph& graph, const sdf::Tas
       st.periodDen = b.period.den;
       st.period = b.period.value() / 1e6;
     }
-    st.sound = a.sound();
-    st.unsound = unsoundReason(a);
+    st.proven = a.runnable();
+    st.notProven = notProvenReason(a);
     out.scenarios.push_back(std::move(st));
   }
   return out;
@@ -109,8 +102,8 @@ std::optional<DataflowProjection> projectDataflow(const model::MissionModel& mis
     robot->dataflow = dataflowTable(g, analysis, tables.teams[robot->team]);
     ++out.robots;
     out.scenarios += analysis.scenarios.size();
-    out.unsound += static_cast<std::size_t>(std::count_if(analysis.scenarios.begin(), analysis.scenarios.end(),
-                                                          [](const sdf::ScenarioAnalysis& a) { return !a.sound(); }));
+    out.notProven += static_cast<std::size_t>(std::count_if(analysis.scenarios.begin(), analysis.scenarios.end(),
+                                                            [](const sdf::ScenarioAnalysis& a) { return !a.runnable(); }));
   }
   out.analysed = out.scenarios - (shared.hits() - hitsBefore);
   return out;

@@ -14,7 +14,7 @@ DataflowRunner::DataflowRunner(const DataflowTable& table) : table_(&table) {
 bool DataflowRunner::runnable(Id s) const {
   if (s >= table_->scenarios.size()) return false;
   const ScenarioTable& t = table_->scenarios[s];
-  return t.sound && !t.schedule.empty() && t.periodNum > 0 && t.periodDen > 0;
+  return t.proven && !t.schedule.empty() && t.periodNum > 0 && t.periodDen > 0;
 }
 
 void DataflowRunner::select(Id s) {

@@ -39,7 +39,7 @@ TeamDataflow::TeamDataflow(const MissionTables& tables, TraceSummary& summary) {
         if (!sc.planServices[p].empty()) planService.back()[s * plans + p] = serviceId(sc.planServices[p]);
       }
       sum.scenarios.push_back(sc.name);
-      if (!runners.back().runnable(s)) sum.notRun.push_back(sc.name + ": " + (sc.unsound.empty() ? "no schedule or period" : sc.unsound));
+      if (!runners.back().runnable(s)) sum.notRun.push_back(sc.name + ": " + (sc.notProven.empty() ? "no schedule or period" : sc.notProven));
     }
     sum.iterations.assign(df.scenarios.size(), 0);
     for (const DataflowChannel& c : df.channels) {

@@ -151,6 +151,10 @@ ChosenBounds prove(const Graph& g, const std::vector<std::int64_t>& q, const Buf
     return out;
   }
   out.safety = proveScheduleSafe(g, point.capacities, it.schedule, options.timeoutMs, &out.safetyNote);
+  if (!options.proveMinimality) {
+    out.minimalityNote = "not asked for (only the safety of the schedule)";
+    return out;
+  }
   const std::int64_t firings = std::accumulate(q.begin(), q.end(), std::int64_t{0});
   bool allMinimal = true, anyUnknown = false;
   for (std::size_t c = 0; c < g.channels.size(); ++c) {

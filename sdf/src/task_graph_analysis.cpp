@@ -24,6 +24,11 @@ bool ScenarioAnalysis::sound() const {
          boundsProven(bounds.deadlockFree) && boundsProven(bounds.maxThroughput);
 }
 
+bool ScenarioAnalysis::runnable() const {
+  return repetition.consistent() && iteration.deadlockFree && unbounded.error.empty() && bounds.haveBounds &&
+         bounds.maxThroughput.safety == ProofStatus::Proven;
+}
+
 bool ScenarioAnalysis::decided() const {
   if (!repetition.consistent()) return repetition.conflictChannel.has_value();
   if (!iteration.error.empty()) return false;

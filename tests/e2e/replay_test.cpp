@@ -160,6 +160,12 @@ TEST(Replay, BadInputIsRefusedWithoutOutput) {
   // A property with no counterexample in the file.
   r = verify("replay '" + checked + "' --property no_such_property" + out, dir);
   EXPECT_EQ(r.exit, 2);
+  // The picture over the counterexample it replays: refused, the counterexample kept.
+  const std::string before = slurp(checked);
+  r = verify("replay '" + checked + "' --save-trace '" + (dir / "out.json").string() + "' --svg '" + checked + "'", dir);
+  EXPECT_EQ(r.exit, 2) << r.out;
+  EXPECT_NE(r.err.find("is an input of this run"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(checked), before);
   EXPECT_FALSE(fs::exists(dir / "out.json"));
   EXPECT_FALSE(fs::exists(dir / "out.svg"));
 }

@@ -117,16 +117,22 @@ class Trace {
   }
 };
 
-// Runs one seed of `name` with `options` and --check-conformance, writing its trace; nullopt (and a
-// failure) when the CLI fails.
-std::optional<Trace> simulate(const std::string& name, const std::string& options, std::uint64_t seed, const fs::path& dir) {
-  const fs::path file = dir / ("seed" + std::to_string(seed) + ".json");
-  CliRun r = verify("simulate " + example(name) + " --check-conformance --seed " + std::to_string(seed) + " " + options + " --trace '" +
-                        file.string() + "'",
+// Runs seeds 1..count of `name` with `options` and --check-conformance in one CLI run (the task
+// graphs are analysed once), each writing its trace (--trace with {seed}); empty (and a failure)
+// when the CLI fails.
+std::vector<Trace> simulateSeeds(const std::string& name, const std::string& options, std::uint64_t count, const fs::path& dir) {
+  CliRun r = verify("simulate " + example(name) + " --check-conformance --seeds 1.." + std::to_string(count) + " " + options + " --trace '" +
+                        (dir / "seed{seed}.json").string() + "'",
                     dir);
   EXPECT_EQ(r.exit, 0) << r.out << r.err;
-  if (r.exit != 0 || !fs::exists(file)) return std::nullopt;
-  return Trace(json::parse(slurp(file)));
+  std::vector<Trace> out;
+  for (std::uint64_t seed = 1; r.exit == 0 && seed <= count; ++seed) {
+    const fs::path file = dir / ("seed" + std::to_string(seed) + ".json");
+    EXPECT_TRUE(fs::exists(file)) << file;
+    if (!fs::exists(file)) return {};
+    out.emplace_back(json::parse(slurp(file)));
+  }
+  return out;
 }
 
 // Every step was one the model allows, and the run kept within the model's assumptions.
@@ -194,10 +200,11 @@ void expectBlueFlights(const Trace& t, const std::string& blue) {
 
 TEST(SimulateChase, BluesFleeEachCloseCallAndRedsCatchThem) {
   const fs::path dir = workDir("chase_seeds");
+  const std::vector<Trace> runs = simulateSeeds("chase", "--loss 0.6", 20, dir);
+  ASSERT_EQ(runs.size(), 20u);
   for (std::uint64_t seed = 1; seed <= 20; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
-    std::optional<Trace> t = simulate("chase", "--loss 0.6", seed, dir);
-    ASSERT_TRUE(t);
+    const Trace* t = &runs[seed - 1];
     expectConforms(*t);
     EXPECT_FALSE(t->summary()["completed"].get<bool>()) << "the chase never ends";
     EXPECT_DOUBLE_EQ(t->end(), 60.0);
@@ -227,10 +234,11 @@ TEST(SimulateChase, BluesFleeEachCloseCallAndRedsCatchThem) {
 // fleeing as before, and the reds chasing only them.
 TEST(SimulateChase, SurvivorsCarryOnAfterABlueCrashes) {
   const fs::path dir = workDir("chase_crash");
+  const std::vector<Trace> runs = simulateSeeds("chase", "--loss 0.6 --crash blue_0@10s", 10, dir);
+  ASSERT_EQ(runs.size(), 10u);
   for (std::uint64_t seed = 1; seed <= 10; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
-    std::optional<Trace> t = simulate("chase", "--loss 0.6 --crash blue_0@10s", seed, dir);
-    ASSERT_TRUE(t);
+    const Trace* t = &runs[seed - 1];
     expectConforms(*t);
     EXPECT_DOUBLE_EQ(t->crashTime("blue_0"), 10.0);
     EXPECT_TRUE(t->modes("blue_0").empty()) << "crashed before red came close";
@@ -303,11 +311,12 @@ void expectEverySectorHeld(const Trace& t) {
 
 TEST(SimulateDeployment, EverySectorClaimedAndHeldThenTheTeamHolds) {
   const fs::path dir = workDir("deployment_seeds");
+  // Going on 13 s after the goal: HOLD_MODE is final (stays_deployed) and nobody moves.
+  const std::vector<Trace> runs = simulateSeeds("deployment", "--loss 0.5 --keep-running --duration 20s", 20, dir);
+  ASSERT_EQ(runs.size(), 20u);
   for (std::uint64_t seed = 1; seed <= 20; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
-    // Going on 13 s after the goal: HOLD_MODE is final (stays_deployed) and nobody moves.
-    std::optional<Trace> t = simulate("deployment", "--loss 0.5 --keep-running --duration 20s", seed, dir);
-    ASSERT_TRUE(t);
+    const Trace* t = &runs[seed - 1];
     expectConforms(*t);
     ASSERT_TRUE(t->summary()["completed"].get<bool>());
     const double done = t->summary()["completedAt"].get<double>();
@@ -331,10 +340,11 @@ TEST(SimulateDeployment, EverySectorClaimedAndHeldThenTheTeamHolds) {
 // they claim them: two of the others take those sectors over, and the goal is still reached.
 TEST(SimulateDeployment, TwoCrashedRobotsSectorsAreTakenOver) {
   const fs::path dir = workDir("deployment_crash");
+  const std::vector<Trace> runs = simulateSeeds("deployment", "--loss 0.3 --crash burger_0@2s --crash ev3_0@2s", 10, dir);
+  ASSERT_EQ(runs.size(), 10u);
   for (std::uint64_t seed = 1; seed <= 10; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
-    std::optional<Trace> t = simulate("deployment", "--loss 0.3 --crash burger_0@2s --crash ev3_0@2s", seed, dir);
-    ASSERT_TRUE(t);
+    const Trace* t = &runs[seed - 1];
     expectConforms(*t);
     ASSERT_TRUE(t->summary()["completed"].get<bool>()) << "every live robot holds, with all four sectors claimed";
     EXPECT_LE(t->summary()["completedAt"].get<double>(), 45.0);
@@ -437,11 +447,12 @@ TEST(SimulatePatrol, GuardsGoRoundDetectScatterAndResume) {
   const fs::path dir = workDir("patrol_seeds");
   const Warehouse h = warehouse();
   const std::vector<std::string> guards = {"guard_0", "guard_1", "guard_2", "rover"};
+  // A Burger's round takes about 100 s: 200 s shows it repeat.
+  const std::vector<Trace> runs = simulateSeeds("patrol", "--loss 0.3 --duration 200s", 8, dir);
+  ASSERT_EQ(runs.size(), 8u);
   for (std::uint64_t seed = 1; seed <= 8; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
-    // A Burger's round takes about 100 s: 200 s shows it repeat.
-    std::optional<Trace> t = simulate("patrol", "--loss 0.3 --duration 200s", seed, dir);
-    ASSERT_TRUE(t);
+    const Trace* t = &runs[seed - 1];
     expectConforms(*t);
     EXPECT_GT(t->summary()["messagesLost"].get<int>(), 0) << "the loss does happen";
     ASSERT_TRUE(t->summary()["convergedAt"].at(0)["t"].is_number()) << "the guards share the aisles' visits";
@@ -488,10 +499,11 @@ TEST(SimulatePatrol, SurvivorsCarryOnAfterAGuardCrashes) {
   const Warehouse h = warehouse();
   const std::vector<std::string> guards = {"guard_0", "guard_1", "guard_2", "rover"};
   for (const std::string crashed : {"guard_0", "rover"}) {
+    const std::vector<Trace> runs = simulateSeeds("patrol", "--loss 0.3 --duration 200s --crash " + crashed + "@20s", 3, dir);
+    ASSERT_EQ(runs.size(), 3u);
     for (std::uint64_t seed = 1; seed <= 3; ++seed) {
       SCOPED_TRACE(crashed + ", seed " + std::to_string(seed));
-      std::optional<Trace> t = simulate("patrol", "--loss 0.3 --duration 200s --crash " + crashed + "@20s", seed, dir);
-      ASSERT_TRUE(t);
+      const Trace* t = &runs[seed - 1];
       expectConforms(*t);
       EXPECT_DOUBLE_EQ(t->crashTime(crashed), 20.0);
       for (const ModeChange& m : t->modes(crashed)) EXPECT_LE(m.t, 20.0) << "a crashed robot changes no mode";

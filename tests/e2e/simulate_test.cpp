@@ -152,4 +152,42 @@ TEST(SimulateBadInput, PositionedErrorsAndNothingWritten) {
   EXPECT_NE(empty.err.find("no start pose for robot ev3_0"), std::string::npos) << empty.err;
 }
 
+// No output replaces an input: not the mission, nor a URDF it reads, nor the world; the inputs are
+// untouched and nothing is written.
+TEST(SimulateBadInput, NeverWritesOverAnInput) {
+  const fs::path dir = workDir("over_input");
+  const fs::path mission = dir / "swarm3.semo", world = dir / "swarm3.world.json";
+  fs::copy_file(fs::path(SEMO_SOURCE_DIR) / "specs/examples/swarm/swarm3.semo", mission, fs::copy_options::overwrite_existing);
+  fs::copy_file(fs::path(SEMO_SOURCE_DIR) / "specs/examples/swarm/swarm3.world.json", world, fs::copy_options::overwrite_existing);
+  const std::string missionText = slurp(mission), worldText = slurp(world);
+  const std::string base = "simulate '" + mission.string() + "' -s specs/examples/swarm/strategy.xml --no-dataflow ";
+  for (const std::string& target : {mission.string(), world.string(), (fs::path(SEMO_SOURCE_DIR) / "specs/robots/quadruped.urdf").string()}) {
+    CliRun r = verify(base + "--trace '" + dir.string() + "/t.json' --svg '" + target + "'", dir);
+    EXPECT_EQ(r.exit, 2) << target;
+    EXPECT_NE(r.err.find("is an input of this run"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "t.json")) << "nothing written, not even the other output";
+  }
+  EXPECT_EQ(slurp(mission), missionText);
+  EXPECT_EQ(slurp(world), worldText);
+}
+
+// --seeds writes one trace per run where {seed} says; without {seed} it is refused before running.
+TEST(SimulateSeeds, OneTracePerSeedAndEachIsThatSeedsRun) {
+  const fs::path dir = workDir("per_seed");
+  const std::string base = "simulate specs/examples/swarm/swarm3.semo -s specs/examples/swarm/strategy.xml --no-dataflow --loss 0.2 ";
+  CliRun none = verify(base + "--seeds 1..3 --trace '" + (dir / "t.json").string() + "'", dir);
+  EXPECT_EQ(none.exit, 2);
+  EXPECT_NE(none.err.find("put {seed} in the name"), std::string::npos) << none.err;
+  EXPECT_FALSE(fs::exists(dir / "t.json"));
+  CliRun many = verify(base + "--seeds 4..6 --trace '" + (dir / "run{seed}.json").string() + "'", dir);
+  ASSERT_EQ(many.exit, 0) << many.out << many.err;
+  EXPECT_FALSE(fs::exists(dir / "run3.json"));
+  EXPECT_FALSE(fs::exists(dir / "run7.json"));
+  CliRun one = verify(base + "--seed 5 --trace '" + (dir / "single.json").string() + "'", dir);
+  ASSERT_EQ(one.exit, 0) << one.out << one.err;
+  EXPECT_EQ(slurp(dir / "run5.json"), slurp(dir / "single.json")) << "seed 5 of many is seed 5 alone";
+  EXPECT_NE(slurp(dir / "run4.json"), slurp(dir / "run5.json"));
+  EXPECT_TRUE(fs::exists(dir / "run6.json"));
+}
+
 }  // namespace

@@ -23,11 +23,11 @@ inline ScenarioTable chainScenario(std::string name, std::int64_t periodNum, std
   s.periodNum = periodNum;
   s.periodDen = periodDen;
   s.period = static_cast<double>(periodNum) / static_cast<double>(periodDen) / 1e6;
-  s.sound = true;
+  s.proven = true;
   return s;
 }
 
-// Scenario 0: period 10/3 ms; 1: period 7 ms; 2: like 0 but not sound (never run).
+// Scenario 0: period 10/3 ms; 1: period 7 ms; 2: like 0 but not proven (never run).
 inline DataflowTable chainTable() {
   DataflowTable t;
   t.tasks = {{"control", DataflowTask::Kind::Control, {"modes of Team"}, 1000},
@@ -35,8 +35,8 @@ inline DataflowTable chainTable() {
              {"B", DataflowTask::Kind::Service, {"work"}, 500}};
   t.channels = {{"control.A.in->A.in", 0, 1, true, 2}, {"A.out->B.in", 1, 2, false, 4}, {"B.out->control.B.out", 2, 0, true, 3}};
   t.scenarios = {chainScenario("RUN", 10000, 3), chainScenario("RUN[slow]", 7000, 1), chainScenario("RUN[unproven]", 10000, 3)};
-  t.scenarios[2].sound = false;
-  t.scenarios[2].unsound = "max-throughput bounds: no overflow/underflow unknown";
+  t.scenarios[2].proven = false;
+  t.scenarios[2].notProven = "max-throughput bounds: no overflow/underflow unknown";
   return t;
 }
 

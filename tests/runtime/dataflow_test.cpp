@@ -1,6 +1,6 @@
 // A robot's dataflow as the runtime runs it: a projected scenario becomes a static schedule with the
 // same firings and channels (forScenario), and the runner fires one iteration per scenario period,
-// switches scenarios between iterations, never runs an unsound scenario, and stops a scenario whose
+// switches scenarios between iterations, never runs an unproven scenario, and stops a scenario whose
 // channel is too small, saying where.
 #include <gtest/gtest.h>
 
@@ -64,7 +64,7 @@ TEST(DataflowRunner, OneIterationPerPeriodExactly) {
   for (Id c = 0; c < table.channels.size(); ++c) EXPECT_EQ(runner.maxFill(c), table.channels[c].capacity) << c;
 }
 
-TEST(DataflowRunner, NeverRunsAnUnsoundScenario) {
+TEST(DataflowRunner, NeverRunsAnUnprovenScenario) {
   const DataflowTable table = sample::chainTable();
   DataflowRunner runner(table);
   EXPECT_TRUE(runner.runnable(0));

@@ -113,7 +113,7 @@ inline SimTrace sampleTrace() {
   s.outsideAssumptions = "ev3_1 crashed after the budget";
   s.violations = {"P1"};
   // Dataflow: turtle_0 ran two of its three scenarios and filled one channel to its capacity; ev3_1
-  // overflowed once; ev3_2 has an unsound scenario it never ran.
+  // overflowed once; ev3_2 has an unproven scenario it never ran.
   s.dataflow.resize(3);
   s.dataflow[0] = {{"SEARCH", "RETURN", "HIDE"}, {1200, 34, 0}, {"a->b", "b->control"}, {4, 1}, {4, 0}, 0, 0, {}};
   s.dataflow[1] = {{"SEARCH"}, {7}, {"a->b"}, {2}, {2}, 0, 1, {}};

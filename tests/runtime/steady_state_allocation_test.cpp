@@ -173,7 +173,7 @@ TEST(SteadyState, DataflowRunnerAllocatesNothing) {
   bool stalled = false;
   AllocationMeter meter;
   for (int i = 0; i < kCalls; ++i) {
-    runner.select(static_cast<Id>((i / 7) % 3));  // now and then another scenario (2 is unsound: it idles)
+    runner.select(static_cast<Id>((i / 7) % 3));  // now and then another scenario (2 is not proven: it idles)
     const DataflowRunner::Advance done = runner.advance(50000);
     iterations += done.iterations;
     stalled = stalled || done.stall != StaticSchedule::Stall::None;

@@ -32,13 +32,16 @@ TEST(DataflowProjection, CapacitiesSchedulesAndPeriodsAreTheAnalysis) {
   ASSERT_TRUE(graphs);
   sdf::ScenarioCache cache;
   std::vector<sdf::TaskGraphAnalysis> analyses;
-  for (const sdf::TaskGraph& g : *graphs) analyses.push_back(sdf::analyseTaskGraph(g, {}, &cache));
+  // The analysis the projection asks for by default: safety proofs only.
+  const sdf::BoundsOptions options = codegen::runningBounds();
+  ASSERT_FALSE(options.proveMinimality);
+  for (const sdf::TaskGraph& g : *graphs) analyses.push_back(sdf::analyseTaskGraph(g, options, &cache));
   // The projection analyses nothing again: every scenario graph is in the cache.
-  std::optional<codegen::DataflowProjection> projected = codegen::projectDataflow(*l->mission, l->tables, diags, {}, &cache);
+  std::optional<codegen::DataflowProjection> projected = codegen::projectDataflow(*l->mission, l->tables, diags, options, &cache);
   ASSERT_TRUE(projected);
   EXPECT_EQ(projected->robots, graphs->size());
   EXPECT_EQ(projected->analysed, 0u);
-  EXPECT_EQ(projected->unsound, 0u);
+  EXPECT_EQ(projected->notProven, 0u);
 
   std::size_t scenarios = 0;
   for (std::size_t r = 0; r < graphs->size(); ++r) {
@@ -63,9 +66,13 @@ TEST(DataflowProjection, CapacitiesSchedulesAndPeriodsAreTheAnalysis) {
       const runtime::ScenarioTable& st = df.scenarios[i];
       const std::string where = g.robot + " " + s.name;
       EXPECT_EQ(st.name, s.name);
-      ASSERT_TRUE(a.sound()) << where;  // scouting is proven throughout (semo-verify sdf exits 0)
-      EXPECT_TRUE(st.sound) << where;
-      EXPECT_TRUE(st.unsound.empty()) << st.unsound;
+      ASSERT_TRUE(a.runnable()) << where;  // scouting is proven throughout (semo-verify sdf exits 0)
+      // Minimality was not asked for, and says so rather than "refuted".
+      EXPECT_EQ(a.bounds.maxThroughput.minimality, sdf::ProofStatus::Unknown) << where;
+      EXPECT_TRUE(a.bounds.maxThroughput.channels.empty()) << where;
+      EXPECT_FALSE(a.bounds.maxThroughput.minimalityNote.empty()) << where;
+      EXPECT_TRUE(st.proven) << where;
+      EXPECT_TRUE(st.notProven.empty()) << st.notProven;
       ASSERT_LT(st.modeIndex, team.modes.size()) << where;
       EXPECT_EQ(team.modes[st.modeIndex].name, s.mode);
       EXPECT_EQ(st.services, s.services);
@@ -129,7 +136,7 @@ std::unique_ptr<Loaded> swarm10() {
   EXPECT_EQ(projected->robots, 10u);
   EXPECT_EQ(projected->scenarios, 10 * l->tables.robots.front().dataflow.scenarios.size());
   EXPECT_EQ(projected->analysed, l->tables.robots.front().dataflow.scenarios.size());
-  EXPECT_EQ(projected->unsound, 0u);
+  EXPECT_EQ(projected->notProven, 0u);
   return l;
 }
 

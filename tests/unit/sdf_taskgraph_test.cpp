@@ -210,6 +210,42 @@ T.main { case (M1): default: mode = M1 }
   EXPECT_EQ(caps, (std::vector<std::int64_t>{2, 1, 2}));  // cmd, goal, tacho in the graph's order
 }
 
+// Safety only (what the simulator asks for): the same capacities, schedule and period, the safety
+// proven, the minimality left Unknown with a note; runnable() but not sound().
+TEST(SdfTaskGraph, SafetyOnlyKeepsTheBoundsAndLeavesMinimalityOut) {
+  auto g = generate(R"(
+T: Ev3Robot e[1]
+T.Act.Go { drive("there") }
+T.M1 { set(Act, Go) }
+T.main { case (M1): default: mode = M1 }
+)", "bounds");
+  ASSERT_TRUE(g->graphs);
+  const TaskGraph& tg = g->graphs->front();
+  BoundsOptions safetyOnly;
+  safetyOnly.proveMinimality = false;
+  const TaskGraphAnalysis full = analyseTaskGraph(tg);
+  const TaskGraphAnalysis quick = analyseTaskGraph(tg, safetyOnly);
+  ASSERT_EQ(quick.scenarios.size(), 1u);
+  const ChosenBounds& f = full.scenarios[0].bounds.maxThroughput;
+  const ChosenBounds& q = quick.scenarios[0].bounds.maxThroughput;
+  EXPECT_EQ(quick.capacities, full.capacities);
+  EXPECT_EQ(q.capacities, f.capacities);
+  EXPECT_EQ(q.period, f.period);
+  ASSERT_EQ(q.schedule.size(), f.schedule.size());
+  for (std::size_t i = 0; i < q.schedule.size(); ++i) {
+    EXPECT_EQ(q.schedule[i].actor, f.schedule[i].actor);
+    EXPECT_EQ(q.schedule[i].times, f.schedule[i].times);
+  }
+  EXPECT_EQ(q.safety, ProofStatus::Proven);
+  EXPECT_EQ(q.minimality, ProofStatus::Unknown);
+  EXPECT_TRUE(q.channels.empty());
+  EXPECT_NE(q.minimalityNote.find("not asked for"), std::string::npos);
+  EXPECT_TRUE(quick.scenarios[0].runnable());
+  EXPECT_FALSE(quick.scenarios[0].sound());
+  EXPECT_TRUE(full.scenarios[0].runnable());
+  EXPECT_TRUE(full.scenarios[0].sound());
+}
+
 // a -> b, 2 produced and 3 consumed per firing: q = (3, 2); a channel of 4 (2 + 3 - 1) runs an
 // iteration (a a b a b), one of 3 cannot (after a a it holds 4 > 3, after a 2 < 3).
 Graph chain() {

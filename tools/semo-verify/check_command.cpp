@@ -264,6 +264,8 @@ int runExport(const ExportOptions& options) {
     std::cout << text;
     return kOk;
   }
+  const ModelInput& in = options.model;
+  if (!outputsSpareInputs({{"--output", *options.output}}, {in.input, in.strategy.value_or(""), in.robotsDir.value_or("")})) return kBadInput;
   if (!writeAtomically(*options.output, text)) {
     std::cerr << "semo-verify: error: cannot write '" << *options.output << "'\n";
     return kBadInput;

@@ -86,5 +86,38 @@ bool writeAtomically(const std::string& path, const std::string& text) {
   return !ec;
 }
 
+std::vector<std::string> filesRead(const SourceManager& sources) {
+  std::vector<std::string> out;
+  for (std::size_t id = 0; id < sources.fileCount(); ++id) out.push_back(sources.path(static_cast<FileId>(id)));
+  return out;
+}
+
+bool outputsSpareInputs(const std::vector<Output>& outputs, const std::vector<std::string>& inputs) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> files;
+  for (const std::string& in : inputs) {
+    std::error_code ec;
+    if (in.empty()) continue;
+    if (!fs::is_directory(in, ec)) {
+      files.push_back(in);
+      continue;
+    }
+    for (fs::directory_iterator it(in, ec), end; !ec && it != end; it.increment(ec)) files.push_back(it->path().string());
+  }
+  for (const Output& out : outputs) {
+    std::error_code ec;
+    if (!fs::exists(out.path, ec)) continue;  // a file yet to be made replaces nothing
+    for (const std::string& in : files) {
+      std::error_code same;
+      if (fs::equivalent(out.path, in, same) && !same) {
+        std::cerr << "semo-verify: error: " << out.flag << " '" << out.path << "' is an input of this run (" << in
+                  << "): semo never writes over its inputs; choose another file\n";
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
 
 }  // namespace semo::cli

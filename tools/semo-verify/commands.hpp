@@ -9,6 +9,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "semo/frontend/source.hpp"
 #include "semo/semantics/ir.hpp"
 
 namespace semo::cli {
@@ -108,6 +109,17 @@ std::string defaultWorldPath(const std::string& mission);
 
 // Writes through a temporary file and renames it, so that a failure never leaves half a file.
 bool writeAtomically(const std::string& path, const std::string& text);
+
+// No output replaces an input. Each output (its option, for the message, and its path) against each
+// input file, and each file of an input folder (--robots), as std::filesystem::equivalent sees them
+// (another name of the same file counts). Prints the error and returns false on the first clash;
+// commands call it before writing anything.
+struct Output {
+  std::string flag, path;
+};
+bool outputsSpareInputs(const std::vector<Output>& outputs, const std::vector<std::string>& inputs);
+// Every file a run read through its SourceManager (mission, strategy, URDFs, ...), to add to `inputs`.
+std::vector<std::string> filesRead(const SourceManager& sources);
 
 int runParse(const ParseOptions& options);
 int runSdf(const SdfOptions& options);

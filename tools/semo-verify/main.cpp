@@ -106,8 +106,8 @@ int main(int argc, char** argv) {
   simulateCmd->add_option("--loss", simulate.loss, "Probability that a message is lost (messages the model lets be lost; default 0)")
       ->check(CLI::Range(0.0, 1.0));
   simulateCmd->add_option("--loss-model", simulate.lossModel, "How losses are spread: bernoulli (default), burst:N, gilbert:P,R");
-  simulateCmd->add_option("--trace", simulate.trace, "Write the run's trace as JSON (semo-simtrace)");
-  simulateCmd->add_option("--svg", simulate.svg, "Write a picture of the run: trajectories and a timeline per robot");
+  simulateCmd->add_option("--trace", simulate.trace, "Write the run's trace as JSON (semo-simtrace); with --seeds, {seed} in the name gives one file per run");
+  simulateCmd->add_option("--svg", simulate.svg, "Write a picture of the run: trajectories and a timeline per robot; {seed} as for --trace");
   simulateCmd->add_flag("--keep-running", simulate.keepRunning, "Go on after the world's goal is reached, until --duration");
   simulateCmd->add_flag("--no-dataflow{false}", simulate.dataflow,
                         "Do not run the robots' task graphs (skips their analysis, which proves the channel capacities at startup)");

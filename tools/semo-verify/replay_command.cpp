@@ -133,6 +133,12 @@ int runReplay(const ReplayOptions& options) {
     if (!read) return kBadInput;
     world = std::move(*read);
   }
+  std::vector<Output> outputs;
+  if (options.traceOut) outputs.push_back({"--save-trace", *options.traceOut});
+  if (options.svg) outputs.push_back({"--svg", *options.svg});
+  std::vector<std::string> inputs = filesRead(sources);
+  inputs.insert(inputs.end(), {options.trace, in.robotsDir.value_or(""), worldPath});
+  if (!outputsSpareInputs(outputs, inputs)) return kBadInput;
 
   const bool deadlock = trace->kind == checker::ReplayedTrace::Kind::Deadlock;
   checker::ReplayMonitor monitor(translation->model, tables, *trace, options.loops);

@@ -44,6 +44,10 @@ int runSdf(const SdfOptions& options) {
   std::optional<sdf::Graph> g = sdf::readSdf3(sources, file, diags);
   for (const Diagnostic& d : diags.diagnostics()) std::cerr << diags.format(d);
   if (!g) return kBadInput;
+  std::vector<Output> outputs;
+  if (options.dotOut) outputs.push_back({"--dot", *options.dotOut});
+  if (options.sdf3Out) outputs.push_back({"--write-sdf3", *options.sdf3Out});
+  if (!outputsSpareInputs(outputs, {options.sdf3})) return kBadInput;
   for (const auto& [path, text] : {std::pair{options.dotOut, sdf::toGraphviz(*g)}, std::pair{options.sdf3Out, sdf::writeSdf3(*g)}}) {
     if (path && !writeAtomically(*path, text)) {
       std::cerr << "semo-verify: error: cannot write '" << *path << "'\n";

@@ -26,6 +26,15 @@ namespace {
 // A robot whose centre is this close has its front on the obstacle: it has reached it.
 constexpr double kTouching = 0.12;
 
+// --trace and --svg name one file per run with {seed} in them (required with --seeds).
+constexpr std::string_view kSeedField = "{seed}";
+std::string perSeed(std::string path, std::uint64_t seed) {
+  for (auto at = path.find(kSeedField); at != std::string::npos; at = path.find(kSeedField, at)) {
+    path.replace(at, kSeedField.size(), std::to_string(seed));
+  }
+  return path;
+}
+
 double closestToObstacle(const runtime::SimTrace& trace) {
   double closest = std::numeric_limits<double>::infinity();
   for (const runtime::PoseSample& s : trace.poses) {
@@ -75,7 +84,7 @@ void printDataflow(const runtime::MissionTables& t, const std::vector<runtime::D
   if (fill >= 0) std::cout << fmt::format(", largest fill {}/{} tokens ({})", fill, capacity, fullest);
   std::cout << fmt::format(", {} of {} channels reached their proven capacity, {} stalls, {} overflows\n", full, channels, stalls, overflows);
   if (!notRun.empty()) {
-    std::cout << fmt::format("  dataflow: {} scenarios not run, their analysis not sound (no bounds claimed): {}", notRun.size(),
+    std::cout << fmt::format("  dataflow: {} scenarios not run, their schedule not proven safe (no bounds claimed): {}", notRun.size(),
                              notRun.front());
     if (notRun.size() > 1) std::cout << fmt::format("; ... ({} in all)", notRun.size());
     std::cout << "\n";
@@ -175,11 +184,24 @@ int runSimulate(const SimulateOptions& options) {
     }
     sim.crashes.push_back({who, *when});
   }
-  if (options.seedsTo && (options.trace || options.svg)) {
-    std::cerr << "semo-verify: error: --trace and --svg describe one run: use --seed, not --seeds\n";
-    return kBadInput;
+  // With --seeds, one trace and one picture per run: {seed} in the file name says where.
+  const std::uint64_t lastSeed = options.seedsTo.value_or(options.seed);
+  for (const auto& [flag, path] : {std::pair{"--trace", options.trace}, std::pair{"--svg", options.svg}}) {
+    if (path && options.seedsTo && path->find(kSeedField) == std::string::npos) {
+      std::cerr << "semo-verify: error: " << flag << " '" << *path << "': with --seeds, one file per run: put " << kSeedField
+                << " in the name (e.g. runs/seed" << kSeedField << ".json)\n";
+      return kBadInput;
+    }
   }
-  // Last before running, as it takes a while (the capacity proofs). Its own diagnostics: a strategy
+  std::vector<Output> outputs;
+  for (std::uint64_t seed = options.seed; seed <= lastSeed; ++seed) {
+    if (options.trace) outputs.push_back({"--trace", perSeed(*options.trace, seed)});
+    if (options.svg) outputs.push_back({"--svg", perSeed(*options.svg, seed)});
+  }
+  std::vector<std::string> inputs = filesRead(sources);
+  inputs.insert(inputs.end(), {options.robotsDir.value_or(""), worldPath});
+  if (!outputsSpareInputs(outputs, inputs)) return kBadInput;
+  // Last before running, as it takes a while (the schedules' safety proofs). Its own diagnostics: a strategy
   // whose task graphs do not fit together still simulates, without dataflow.
   if (options.dataflow) {
     DiagnosticEngine dataflowDiags(sources);
@@ -199,17 +221,23 @@ int runSimulate(const SimulateOptions& options) {
     return trace;
   };
 
+  // The run's trace and picture, when asked for (false: one could not be written).
+  auto write = [&](const runtime::SimTrace& trace) {
+    for (const auto& [path, render] : {std::pair{options.trace, &runtime::simTraceToJson}, std::pair{options.svg, &runtime::renderSvg}}) {
+      if (!path) continue;
+      const std::string file = perSeed(*path, trace.seed);
+      if (!writeAtomically(file, render(trace))) {
+        std::cerr << "semo-verify: error: cannot write '" << file << "'\n";
+        return false;
+      }
+    }
+    return true;
+  };
+
   if (!options.seedsTo) {
     runtime::SimTrace trace = runOne(options.seed);
     printSummary(tables, trace, options.checkConformance);
-    if (options.trace && !writeAtomically(*options.trace, runtime::simTraceToJson(trace))) {
-      std::cerr << "semo-verify: error: cannot write '" << *options.trace << "'\n";
-      return kBadInput;
-    }
-    if (options.svg && !writeAtomically(*options.svg, runtime::renderSvg(trace))) {
-      std::cerr << "semo-verify: error: cannot write '" << *options.svg << "'\n";
-      return kBadInput;
-    }
+    if (!write(trace)) return kBadInput;
     return trace.summary.violations.empty() ? kOk : kViolated;
   }
 
@@ -222,6 +250,7 @@ int runSimulate(const SimulateOptions& options) {
   const bool progress = isatty(STDERR_FILENO) != 0;
   for (std::uint64_t seed = options.seed; seed <= *options.seedsTo; ++seed, ++runs) {
     runtime::SimTrace trace = runOne(seed);
+    if (!write(trace)) return kBadInput;
     const runtime::TraceSummary& s = trace.summary;
     if (s.completed) ++completed, completionSum += s.completedAt, completionMax = std::max(completionMax, s.completedAt);
     if (!s.violations.empty()) {

@@ -164,6 +164,15 @@ int runTaskGraphs(const SdfOptions& options) {
     }
   }
   if (options.outDir) {
+    std::vector<Output> outputs;
+    for (const sdf::TaskGraph& g : graphs) {
+      const std::string base = (std::filesystem::path(*options.outDir) / g.robot).string();
+      outputs.push_back({"--out", base + ".json"});
+      outputs.push_back({"--out", base + ".dot"});
+    }
+    std::vector<std::string> inputs = filesRead(sources);
+    if (options.robotsDir) inputs.push_back(*options.robotsDir);
+    if (!outputsSpareInputs(outputs, inputs)) return kBadInput;
     std::error_code ec;
     std::filesystem::create_directories(*options.outDir, ec);
     for (const sdf::TaskGraph& g : graphs) {

@@ -55,11 +55,12 @@ struct ScenarioTable {
   std::int64_t periodNum = 0, periodDen = 1;  // microseconds per iteration, exact (self-timed, within the capacities)
   double period = 0;                          // the same in seconds
 
-  // Every analysis held: consistent, deadlock free, a period, and both the deadlock-free and the
-  // max-throughput bounds proven (no overflow nor underflow, minimal). The runtime runs only sound
-  // scenarios: an unsound one has no bounds to claim.
-  bool sound = false;
-  std::string unsound;  // why not, in words (empty when sound)
+  // What running needs held: consistent, deadlock free, a period, and the schedule proven safe
+  // within the capacities (no overflow nor underflow, for any number of iterations). The runtime
+  // runs only proven scenarios: another has no bounds to claim. (Whether the capacities are also
+  // minimal is the analysis' business, `semo-verify sdf`; running does not depend on it.)
+  bool proven = false;
+  std::string notProven;  // why not, in words (empty when proven)
 };
 
 struct DataflowTable {

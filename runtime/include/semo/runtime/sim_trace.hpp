@@ -72,7 +72,7 @@ struct DataflowRunSummary {
   std::vector<std::string> channels;            // per channel: its name
   std::vector<std::int64_t> capacity, maxFill;  // per channel: the proven capacity it ran with, the most tokens it held
   std::uint64_t stalls = 0, overflows = 0;      // iterations that could not complete (impossible by the proof)
-  std::vector<std::string> notRun;              // scenarios never run, their analysis not sound: "NAME: why"
+  std::vector<std::string> notRun;              // scenarios never run, their schedule not proven: "NAME: why"
 };
 
 struct TraceSummary {

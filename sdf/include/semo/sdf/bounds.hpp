@@ -49,12 +49,18 @@ struct ChosenBounds {
   std::string safetyNote;
   ProofStatus minimality = ProofStatus::Unknown;  // Proven when every channel's outcome is
   std::vector<ChannelMinimality> channels;        // per bounded channel
+  std::string minimalityNote;                     // Unknown without channels: why (not asked for)
 };
 
 struct BoundsOptions {
   std::uint64_t maxDistributions = 200'000;
   unsigned timeoutMs = 10'000;            // per Z3 query
   std::uint64_t maxFiringsForProof = 4000;  // iterations with more firings are not encoded (Unknown)
+  // Minimality is a claim about memory (no channel could be smaller), not about running: what runs
+  // needs only the schedule proven safe within the capacities. Its queries (one per channel) are
+  // nine tenths of the time, so those who only run the graph (the simulator) leave them out; the
+  // minimality is then Unknown, with a note saying it was not asked for.
+  bool proveMinimality = true;
 };
 
 struct ScenarioBounds {

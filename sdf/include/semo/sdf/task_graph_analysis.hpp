@@ -26,6 +26,9 @@ struct ScenarioAnalysis {
   ScenarioBounds bounds;
   // Sound: consistent, deadlock free, period known and both bounds proven (safety and minimality).
   [[nodiscard]] bool sound() const;
+  // Runnable: consistent, deadlock free, a period, and the max-throughput schedule proven safe within
+  // its capacities: what running the scenario needs (sound() implies it; minimality is not needed).
+  [[nodiscard]] bool runnable() const;
   // Decided: nothing came out "unknown" (a limit or a solver timeout); !sound() && decided() is a
   // real defect of the graph.
   [[nodiscard]] bool decided() const;
@@ -37,7 +40,8 @@ struct TaskGraphAnalysis {
 };
 
 // Robots of one type in the same role get the same scenario graphs: a cache shared across calls
-// analyses each distinct graph (actors, execution times, channels, rates, tokens) once.
+// analyses each distinct graph (actors, execution times, channels, rates, tokens) once. One cache
+// serves one BoundsOptions: its entries hold the proofs those options asked for.
 class ScenarioCache {
  public:
   const ScenarioAnalysis* find(const Graph& g) const;
