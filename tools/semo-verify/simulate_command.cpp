@@ -242,7 +242,7 @@ int runSimulate(const SimulateOptions& options) {
   }
 
   // Many seeds: one line of statistics per measure.
-  std::uint64_t completed = 0, mismatched = 0, outside = 0, runs = 0;
+  std::uint64_t completed = 0, mismatched = 0, outside = 0, runs = 0, sent = 0, lost = 0;
   std::uint64_t dataflowIterations = 0, dataflowStalls = 0, dataflowOverflows = 0;
   double completionSum = 0, completionMax = 0, takeoverMax = -1;
   double closestMin = std::numeric_limits<double>::infinity(), closestMax = 0;
@@ -258,6 +258,7 @@ int runSimulate(const SimulateOptions& options) {
       std::cout << "seed " << seed << ": " << s.violations.front() << "\n";
     }
     if (!s.outsideAssumptions.empty()) ++outside;
+    sent += s.messagesSent, lost += s.messagesLost;
     for (const runtime::DataflowRunSummary& d : s.dataflow) {
       for (std::uint64_t n : d.iterations) dataflowIterations += n;
       dataflowStalls += d.stalls, dataflowOverflows += d.overflows;
@@ -280,6 +281,7 @@ int runSimulate(const SimulateOptions& options) {
     std::cout << fmt::format("  closest to an obstacle: {:.3f} m at worst, {:.3f} m at best; {} runs where a robot reached one\n", closestMin,
                              closestMax, reachedObstacle);
   }
+  std::cout << fmt::format("  messages: {} sent, {} lost in all\n", grouped(sent), grouped(lost));
   if (outside > 0) std::cout << fmt::format("  {} runs left the model's assumptions\n", outside);
   if (std::any_of(tables.robots.begin(), tables.robots.end(), [](const runtime::RobotTable& r) { return !r.dataflow.tasks.empty(); })) {
     std::cout << fmt::format("  dataflow: {} iterations in all, {} stalls, {} overflows\n", grouped(dataflowIterations), dataflowStalls,
