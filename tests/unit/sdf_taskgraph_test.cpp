@@ -176,17 +176,20 @@ T.main { case (M1): default: mode = M1 }
   EXPECT_TRUE(analyseTaskGraph(tg).scenarios[0].sound());
 }
 
+// One Ev3 in one mode running drive (the next two tests).
+constexpr const char* kOneDrive = R"(
+T: Ev3Robot e[1]
+T.Act.Go { drive("there") }
+T.M1 { set(Act, Go) }
+T.main { case (M1): default: mode = M1 }
+)";
+
 // One mode running drive: control -> planner (5 ms) -> 2x motor (1 ms) -> control (1 ms), a single
 // cycle with one command token: period 5 + 1 + 1 + 1 = 8 ms. Smallest capacities: goal 1 (its one
 // token), cmd 2 (p + c - gcd), tacho 2; with them nothing waits longer, so total 5 is both the
 // deadlock-free and the maximal-throughput choice, and one token less on any channel deadlocks.
 TEST(SdfTaskGraph, HandComputedRepetitionPeriodAndProvenBounds) {
-  auto g = generate(R"(
-T: Ev3Robot e[1]
-T.Act.Go { drive("there") }
-T.M1 { set(Act, Go) }
-T.main { case (M1): default: mode = M1 }
-)", "bounds");
+  auto g = generate(kOneDrive, "bounds");
   ASSERT_TRUE(g->graphs);
   const TaskGraph& tg = g->graphs->front();
   ASSERT_EQ(tg.scenarios.size(), 1u);
@@ -213,12 +216,7 @@ T.main { case (M1): default: mode = M1 }
 // Safety only (what the simulator asks for): the same capacities, schedule and period, the safety
 // proven, the minimality left Unknown with a note; runnable() but not sound().
 TEST(SdfTaskGraph, SafetyOnlyKeepsTheBoundsAndLeavesMinimalityOut) {
-  auto g = generate(R"(
-T: Ev3Robot e[1]
-T.Act.Go { drive("there") }
-T.M1 { set(Act, Go) }
-T.main { case (M1): default: mode = M1 }
-)", "bounds");
+  auto g = generate(kOneDrive, "bounds");
   ASSERT_TRUE(g->graphs);
   const TaskGraph& tg = g->graphs->front();
   BoundsOptions safetyOnly;
