@@ -207,6 +207,12 @@ void Projector::robots() {
       out.geometry.wheeled = true;
       out.geometry.wheelRadius = type->wheels->radius;
       out.geometry.wheelSeparation = type->wheels->separation;
+      // The URDF's wheel velocity limit: forward at full wheel speed, and turning in place with the
+      // wheels at full speed in opposite directions. Without a limit the body's defaults stay.
+      if (const double w = type->wheels->maxWheelSpeed; w > 0) {
+        out.geometry.maxSpeed = w * type->wheels->radius;
+        if (type->wheels->separation > 0) out.geometry.maxTurnRate = 2 * out.geometry.maxSpeed / type->wheels->separation;
+      }
     }
     const runtime::TeamTable& team = out_.teams[robot.team];
     out.eventDeliveryRule.assign(team.events.size(), kNone);

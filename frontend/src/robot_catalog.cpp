@@ -163,6 +163,10 @@ void deriveFromModel(const urdf::ModelInterface& model, RobotType& type) {
     maxY = first ? y : std::max(maxY, y);
     first = false;
     if (auto child = model.getLink(j->child_link_name)) g.radius = std::max(g.radius, cylinderRadius(*child));
+    // The slowest wheel bounds the robot: driving straight needs every wheel at the same speed.
+    if (j->limits && j->limits->velocity > 0) {
+      g.maxWheelSpeed = g.maxWheelSpeed > 0 ? std::min(g.maxWheelSpeed, j->limits->velocity) : j->limits->velocity;
+    }
   }
   g.separation = maxY - minY;
   type.wheels = g;

@@ -174,20 +174,6 @@ Vec2 insideArena(const BehaviourContext& ctx, Vec2 p) {
   return {std::clamp(p.x, std::min(lo.x + 0.3, hi.x), std::max(hi.x - 0.3, lo.x)), std::clamp(p.y, std::min(lo.y + 0.3, hi.y), std::max(hi.y - 0.3, lo.y))};
 }
 
-// The nearest live robot other than ctx.robot whose team is (sameTeam) or is not (!sameTeam) `team`;
-// -1 when there is none. Reads the poses every robot's camera or range sensor would show.
-int nearestRobot(const BehaviourContext& ctx, std::string_view team, bool sameTeam) {
-  const Pose me = ctx.body->pose();
-  int nearest = -1;
-  double best = 1e300;
-  for (std::size_t r = 0; r < ctx.poses->size(); ++r) {
-    if (r == ctx.robot || !(*ctx.alive)[r] || (((*ctx.teams)[r] == team) != sameTeam)) continue;
-    const double d = std::hypot((*ctx.poses)[r].x - me.x, (*ctx.poses)[r].y - me.y);
-    if (d < best) best = d, nearest = static_cast<int>(r);
-  }
-  return nearest;
-}
-
 // pursue(team): drives after one robot of the named team (of any other team when no name is given):
 // the nearest live one not already within reach (a robot within reach has just been caught). Over
 // once it is reached or gone; when there is nobody to chase it waits a second first, so that the
@@ -220,28 +206,63 @@ class Pursue final : public Behaviour {
   double since_ = 0;
 };
 
-// runAway: drives away from the nearest robot of another team (of any team when it is alone with
-// its own) for a few seconds, re-aiming every period as the pursuer moves.
+// runAway: drives away from the robots of the other teams (from its own when it is alone with them)
+// for a few seconds, re-aiming every period as the pursuers move.
 class RunAway final : public Behaviour {
  public:
   void start(BehaviourContext& ctx) override { since_ = ctx.now; }
   bool step(BehaviourContext& ctx) override {
-    int from = nearestRobot(ctx, (*ctx.teams)[ctx.robot], false);
-    if (from < 0) from = nearestRobot(ctx, (*ctx.teams)[ctx.robot], true);
-    if (from < 0 || ctx.now - since_ + 1e-9 >= kSeconds) {
+    // Away from every robot of the other teams at once, each weighing 1/d^2 (the nearest counts
+    // most): fleeing only the nearest flips direction whenever two chasers swap places. With no
+    // other team in sight, away from its own team.
+    const Pose me = ctx.body->pose();
+    double ax = 0, ay = 0;
+    for (const bool sameTeam : {false, true}) {
+      for (std::size_t r = 0; r < ctx.poses->size(); ++r) {
+        if (r == ctx.robot || !(*ctx.alive)[r] || (((*ctx.teams)[r] == (*ctx.teams)[ctx.robot]) != sameTeam)) continue;
+        const double dx = me.x - (*ctx.poses)[r].x, dy = me.y - (*ctx.poses)[r].y;
+        const double d2 = std::max(dx * dx + dy * dy, 1e-6);
+        ax += dx / (d2 * std::sqrt(d2));
+        ay += dy / (d2 * std::sqrt(d2));
+      }
+      if (ax != 0 || ay != 0) break;
+    }
+    if ((ax == 0 && ay == 0) || ctx.now - since_ + 1e-9 >= kSeconds) {
       ctx.body->command(0, 0);
       return true;
     }
-    const Pose me = ctx.body->pose(), them = (*ctx.poses)[from];
-    const double d = std::max(std::hypot(me.x - them.x, me.y - them.y), 1e-6);
-    // 1 m ahead on the line away; cornered against a wall, it stays there until the time is up.
-    if (steer(ctx, insideArena(ctx, {me.x + (me.x - them.x) / d, me.y + (me.y - them.y) / d})) < 0.1) ctx.body->command(0, 0);
+    // 1 m ahead on the line away. Against a wall that point lies behind the wall: the robot slides
+    // along the wall instead, in the direction it already escapes in while that stays open (so that
+    // it does not swing from side to side as the chasers move), else turning off the line away a
+    // little more at a time (45 degrees, 90, 135; one side first, in a fixed order, so that runs
+    // stay deterministic). Cornered on every side, it stays there until the time is up.
+    auto open = [&](double a, Vec2& target) {
+      target = insideArena(ctx, {me.x + std::cos(a), me.y + std::sin(a)});
+      return std::hypot(target.x - me.x, target.y - me.y) >= 0.5;
+    };
+    const double away = std::atan2(ay, ax);
+    Vec2 target;
+    if (open(away, target) || (sliding_ && open(slide_, target))) {
+      steer(ctx, target);
+      return false;
+    }
+    for (const double turn : {0.25, -0.25, 0.5, -0.5, 0.75, -0.75}) {
+      if (open(away + turn * std::numbers::pi, target)) {
+        slide_ = away + turn * std::numbers::pi;
+        sliding_ = true;
+        steer(ctx, target);
+        return false;
+      }
+    }
+    ctx.body->command(0, 0);
     return false;
   }
 
  private:
   static constexpr double kSeconds = 3.0;
   double since_ = 0;
+  bool sliding_ = false;
+  double slide_ = 0;  // the direction along a wall it escapes in
 };
 
 // wander: goes round a fixed square lap of 1 m from where the call starts (ahead, then to the left;

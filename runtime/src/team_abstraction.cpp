@@ -52,6 +52,7 @@ void Team::beginStep() { abstractState(before_); }
 
 void Team::step(Id robot, std::vector<Id> rules, std::string what, std::string origin) {
   abstractState(after_);
+  for (Id k = 0; k < t_.knowledge.size(); ++k) convergence(k);
   lastStep_.assign(rules.begin(), rules.end());
   dirty_ = true;
   TraceEvent e;
@@ -109,29 +110,30 @@ void Team::leaderChange(Id lb, Id robot) {
   trace_.summary.leaderChanges.push_back(c);
 }
 
-// The first time every live robot of the team that takes part (works in the service, or holds facts
-// of it) holds the same facts of the item, and some fact.
+// Since when every live robot of the team that takes part (works in the service, or holds facts of
+// it) has held the same facts of the item, and some fact: the start of the agreement that lasts, not
+// the first one (a robot that finds a new fact, or joins the service empty-handed, breaks it; a
+// crash may restore it). Called after every step, the only way the stores, the robots' service
+// membership or their liveness change; -1 while they disagree.
 void Team::convergence(Id k) {
-  auto& converged = trace_.summary.convergedAt;
-  const std::string& name = t_.knowledge[k].name;
-  for (const auto& [item, at] : converged) {
-    if (item == name && at >= 0) return;
-  }
+  double& at = trace_.summary.convergedAt[k].second;
   const KnowledgeStore* first = nullptr;
+  bool agreed = true;
   for (Id q : t_.teams[t_.knowledge[k].team].robots) {
     if (!robots_[q].alive) continue;
     const std::vector<Id>& items = t_.robots[q].knowledge;
     const auto slot = static_cast<std::size_t>(std::find(items.begin(), items.end(), k) - items.begin());
     const KnowledgeStore& store = robots_[q].knowledge[slot];
     if (store.count() == 0 && !inService(q, k)) continue;  // never took part: a Burger does not search papers
-    if (store.count() == 0) return;
+    if (store.count() == 0 || (first != nullptr && !store.sameFactsAs(*first))) {
+      agreed = false;
+      break;
+    }
     if (first == nullptr) first = &store;
-    else if (!store.sameFactsAs(*first)) return;
   }
-  if (first == nullptr) return;
-  for (auto& [item, at] : converged) {
-    if (item == name) at = now();
-  }
+  agreed = agreed && first != nullptr;
+  if (!agreed) at = -1;
+  else if (at < 0) at = now();
 }
 
 }  // namespace semo::runtime::detail

@@ -242,7 +242,6 @@ void Team::gossip(Id k) {
       learnFrom(q, sender, k);
     }
   }
-  convergence(k);
 }
 
 // Robot q merges what `sender` holds of item k: one learn step when it learnt facts.
@@ -296,7 +295,6 @@ void Team::discoverFact(Id robot, const RobotTable::Discover& d, std::uint32_t f
   r.knowledge[slot].discover(fact, robot, r.lamport);
   note(robot, TraceEvent::Kind::Fact, "finds " + item.name + ": " + item.facts[fact], item.name + ": " + item.facts[fact]);
   step(robot, {d.rule}, t_.rules[d.rule].label, t_.rules[d.rule].origin);
-  convergence(d.knowledge);
 }
 
 void Team::crash(Id robot, const std::string& why) {

@@ -447,8 +447,8 @@ TEST(SimulatePatrol, GuardsGoRoundDetectScatterAndResume) {
   const fs::path dir = workDir("patrol_seeds");
   const Warehouse h = warehouse();
   const std::vector<std::string> guards = {"guard_0", "guard_1", "guard_2", "rover"};
-  // A Burger's round takes about 100 s: 200 s shows it repeat.
-  const std::vector<Trace> runs = simulateSeeds("patrol", "--loss 0.3 --duration 200s", 8, dir);
+  // A Burger's round takes about 140 s at its 0.22 m/s: 300 s shows it repeat.
+  const std::vector<Trace> runs = simulateSeeds("patrol", "--loss 0.3 --duration 300s", 8, dir);
   ASSERT_EQ(runs.size(), 8u);
   for (std::uint64_t seed = 1; seed <= 8; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
@@ -499,7 +499,7 @@ TEST(SimulatePatrol, SurvivorsCarryOnAfterAGuardCrashes) {
   const Warehouse h = warehouse();
   const std::vector<std::string> guards = {"guard_0", "guard_1", "guard_2", "rover"};
   for (const std::string crashed : {"guard_0", "rover"}) {
-    const std::vector<Trace> runs = simulateSeeds("patrol", "--loss 0.3 --duration 200s --crash " + crashed + "@20s", 3, dir);
+    const std::vector<Trace> runs = simulateSeeds("patrol", "--loss 0.3 --duration 300s --crash " + crashed + "@20s", 3, dir);
     ASSERT_EQ(runs.size(), 3u);
     for (std::uint64_t seed = 1; seed <= 3; ++seed) {
       SCOPED_TRACE(crashed + ", seed " + std::to_string(seed));

@@ -113,8 +113,8 @@ void printSummary(const runtime::MissionTables& t, const runtime::SimTrace& trac
     std::cout << "\n";
   }
   for (const auto& [item, at] : s.convergedAt) {
-    if (at >= 0) std::cout << fmt::format("  knowledge {}: every live robot holds the same facts from {:.3f} s\n", item, at);
-    else std::cout << fmt::format("  knowledge {}: never the same at every live robot\n", item);
+    if (at >= 0) std::cout << fmt::format("  knowledge {}: every live robot holds the same facts from {:.3f} s to the end\n", item, at);
+    else std::cout << fmt::format("  knowledge {}: not the same at every live robot at the end\n", item);
   }
   std::cout << fmt::format("  messages: {} sent, {} lost\n", s.messagesSent, s.messagesLost);
   if (!trace.world.obstacles.empty()) std::cout << fmt::format("  closest to an obstacle: {:.3f} m\n", closestToObstacle(trace));

@@ -18,6 +18,7 @@ struct WheelGeometry {
   int wheelCount = 0;
   double radius = 0;      // metres
   double separation = 0;  // metres, between the outermost wheel joints
+  double maxWheelSpeed = 0;  // rad/s: the smallest velocity limit of the wheel joints (0: none stated)
 };
 
 struct RobotType {

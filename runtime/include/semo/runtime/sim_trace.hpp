@@ -81,7 +81,7 @@ struct TraceSummary {
   double completedAt = -1;
   std::vector<std::pair<double, std::string>> modeChanges;  // (time, "ev3_0: SEARCH_MODE")
   std::vector<LeaderChange> leaderChanges;
-  std::vector<std::pair<std::string, double>> convergedAt;  // (knowledge item, time every live worker held the same facts), -1 never
+  std::vector<std::pair<std::string, double>> convergedAt;  // (knowledge item, since when every live robot taking part has held the same facts, to the end), -1: not at the end
   std::uint64_t messagesSent = 0, messagesLost = 0;
   std::uint64_t stepsChecked = 0;  // conformance: steps compared with the model
   std::uint64_t mismatches = 0;
