@@ -1,6 +1,6 @@
 #pragma once
 // A shipped mission loaded, translated and projected, for the unit tests of what runs (projection,
-// simulation, dataflow, replay). Paths are relative to specs/.
+// simulation, dataflow, replay). Paths are relative to specs/, unless absolute.
 #include <memory>
 #include <optional>
 #include <string>
@@ -25,15 +25,16 @@ struct LoadedMission {
 inline std::unique_ptr<LoadedMission> loadSpec(const std::string& mission, const std::string& strategy, const std::string& world = {}) {
   auto l = std::make_unique<LoadedMission>();
   DiagnosticEngine diags(l->sources);
-  const std::string base = std::string(SEMO_SOURCE_DIR) + "/specs/";
-  l->mission = loadMission({base + mission, base + strategy, std::nullopt}, l->sources, diags);
+  const std::string specs = std::string(SEMO_SOURCE_DIR) + "/specs/";
+  auto at = [&](const std::string& path) { return !path.empty() && path.front() == '/' ? path : specs + path; };
+  l->mission = loadMission({at(mission), at(strategy), std::nullopt}, l->sources, diags);
   if (!l->mission) return nullptr;
   l->translation = translateMission(*l->mission, {}, l->sources, diags);
   if (!l->translation) return nullptr;
   l->tables = codegen::project(*l->mission, *l->translation, l->sources);
   if (!world.empty()) {
     std::vector<runtime::WorldError> errors;
-    l->world = runtime::readWorld(base + world, errors);
+    l->world = runtime::readWorld(at(world), errors);
   }
   return l;
 }
