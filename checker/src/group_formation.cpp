@@ -32,8 +32,9 @@ std::int64_t minimumSize(const model::MissionModel& m, const model::GroupArm& ar
 
 }  // namespace
 
-std::vector<FormationVerdict> checkGroupFormation(const model::MissionModel& m) {
+std::vector<FormationVerdict> checkGroupFormation(const model::MissionModel& m, const std::vector<std::int64_t>* crashBudget) {
   std::vector<FormationVerdict> out;
+  const std::vector<std::int64_t>& budgets = crashBudget != nullptr ? *crashBudget : m.assumptions.crashBudget;
   for (Index b = 0; b < m.groupBlocks.size(); ++b) {
     const model::GroupBlock& block = m.groupBlocks[b];
     std::vector<const model::GroupArm*> arms;
@@ -45,7 +46,7 @@ std::vector<FormationVerdict> checkGroupFormation(const model::MissionModel& m) 
     FormationVerdict v;
     v.blockIndex = b;
     v.block = m.services[block.service].name + (block.isLeaderBlock ? " (leader block)" : (arms.size() == 1 ? " (block of 1 group)" : " (block of " + std::to_string(arms.size()) + " groups)"));
-    v.budget = block.team < m.assumptions.crashBudget.size() ? m.assumptions.crashBudget[block.team] : 0;
+    v.budget = block.team < budgets.size() ? budgets[block.team] : 0;
 
     // Robots wanted by the same arms are interchangeable here: one count per such class (how many
     // of it crash) keeps the problem as small as the number of classes, whatever the team's size.

@@ -2,6 +2,7 @@
 // The subcommands of semo-verify. Each returns the process exit code:
 // 0 clean, 1 property violated, 2 bad input, 3 resource limit reached.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -9,8 +10,10 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "semo/checker/verify.hpp"
 #include "semo/frontend/source.hpp"
 #include "semo/semantics/ir.hpp"
+#include "semo/semantics/mission_model.hpp"
 
 namespace semo::cli {
 
@@ -50,7 +53,6 @@ struct CheckOptions {
   std::string engine = "explicit";
   bool bmcOnly = false;        // smt: bounded model checking only, no unbounded proofs
   unsigned smtTimeoutS = 600;  // smt: per solver call (an IC3 run is one); 0: none
-  std::string engineReason;    // auto: why it chose the engine it ran (set by runCheck)
 };
 
 struct ExportOptions {
@@ -99,6 +101,22 @@ struct ReplayOptions {
   bool checkFingerprint = true;
 };
 
+// A model read from an IR file, or a mission loaded and translated (then `mission` too).
+struct BuiltModel {
+  SourceManager sources;
+  std::optional<model::MissionModel> mission;
+  std::optional<ir::Model> model;
+};
+// Diagnostics are printed; null on error.
+std::unique_ptr<BuiltModel> buildModel(const ModelInput& in);
+// The options of `check` as the verification facade takes them.
+checker::VerifyOptions verifyOptions(const CheckOptions& options);
+// A Report as `check` prints it (check_report.cpp).
+std::string reportText(const checker::Report& report, const ir::Model& model, const std::string& input, bool bmcOnly);
+nlohmann::json reportJson(const checker::Report& report, const ir::Model& model, const ModelInput& in);
+// Seconds as a stream prints a double ("0.00209936").
+std::string fmtSeconds(double seconds);
+
 // Records in a `check --json` root how the model was built (strategy, robots, overrides).
 void addModelInput(nlohmann::json& root, const ModelInput& in);
 
@@ -126,8 +144,6 @@ int runSdf(const SdfOptions& options);
 // `sdf MISSION --strategy S` and `sdf --graph G.json` (taskgraph_command.cpp).
 int runTaskGraphs(const SdfOptions& options);
 int runCheck(const CheckOptions& options);
-// `check --engine smt` on a model already built (check_smt.cpp).
-int runCheckSmt(const CheckOptions& options, const ir::Model& model);
 int runExport(const ExportOptions& options);
 int runLint(const LintOptions& options);
 int runSimulate(const SimulateOptions& options);

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "semo/checker/verify.hpp"
 #include "semo/semantics/load.hpp"
 #include "semo/sdf/task_graph_analysis.hpp"
 #include "semo/sdf/task_graph_io.hpp"
@@ -14,12 +15,6 @@ namespace semo::cli {
 namespace {
 
 using nlohmann::json;
-
-// What every verdict below rests on.
-constexpr const char* kAssumptions =
-    "execution times are the strategy's worst cases (generated control and communication tasks: 1 ms nominal); "
-    "a task's firings run one at a time; channels are FIFO with space claimed when a firing starts and freed when "
-    "the consuming firing ends; messages between robots are outside these graphs";
 
 std::string periodText(const sdf::Period& p) { return std::to_string(p.num) + (p.den == 1 ? "" : "/" + std::to_string(p.den)); }
 
@@ -187,15 +182,12 @@ int runTaskGraphs(const SdfOptions& options) {
   sdf::BoundsOptions bo;
   bo.maxDistributions = options.maxDistributions;
   bo.timeoutMs = options.proofTimeoutMs;
-  bool allSound = true, allDecided = true;
+  checker::Report report;
+  checker::addTaskGraphs(report, std::move(graphs), bo);
   json robots = json::array();
-  sdf::ScenarioCache cache;
-  for (const sdf::TaskGraph& g : graphs) {
-    const sdf::TaskGraphAnalysis analysis = sdf::analyseTaskGraph(g, bo, &cache);
-    for (const sdf::ScenarioAnalysis& a : analysis.scenarios) {
-      allSound = allSound && a.sound();
-      allDecided = allDecided && a.decided();
-    }
+  for (const checker::TaskGraphReport& r : report.taskGraphs) {
+    const sdf::TaskGraph& g = r.graph;
+    const sdf::TaskGraphAnalysis& analysis = r.analysis;
     if (options.json) {
       json scenarios = json::array();
       for (const sdf::ScenarioAnalysis& a : analysis.scenarios) scenarios.push_back(scenarioJson(a));
@@ -213,13 +205,12 @@ int runTaskGraphs(const SdfOptions& options) {
     for (const sdf::ScenarioAnalysis& a : analysis.scenarios) printScenario(a);
   }
   // Sound everywhere: 0; a real defect (inconsistent, deadlocking, a bound refuted): 1; else 3.
-  const int code = allSound ? kOk : allDecided ? kViolated : kLimit;
   if (options.json) {
-    std::cout << json{{"robots", robots}, {"assumptions", kAssumptions}, {"exitCode", code}}.dump(2) << "\n";
+    std::cout << json{{"robots", robots}, {"assumptions", report.taskGraphAssumptions}, {"exitCode", report.exitCode}}.dump(2) << "\n";
   } else {
-    std::cout << "assumptions: " << kAssumptions << "\n";
+    std::cout << "assumptions: " << report.taskGraphAssumptions << "\n";
   }
-  return code;
+  return report.exitCode;
 }
 
 }  // namespace semo::cli

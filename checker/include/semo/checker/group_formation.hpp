@@ -28,7 +28,9 @@ struct FormationVerdict {
   [[nodiscard]] bool holds() const { return tolerated >= budget; }
 };
 
-// One verdict per block with at least one arm other than `others`, in block order.
-std::vector<FormationVerdict> checkGroupFormation(const model::MissionModel& mission);
+// One verdict per block with at least one arm other than `others`, in block order. `crashBudget`
+// (per team) replaces the mission's assumption when given (`check --crash N`).
+std::vector<FormationVerdict> checkGroupFormation(const model::MissionModel& mission,
+                                                  const std::vector<std::int64_t>* crashBudget = nullptr);
 
 }  // namespace semo::checker

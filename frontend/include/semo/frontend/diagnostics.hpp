@@ -31,6 +31,7 @@ class DiagnosticEngine {
   [[nodiscard]] std::size_t warningCount() const { return warnings_; }
   [[nodiscard]] bool hasErrors() const { return errors_ != 0; }
   [[nodiscard]] const std::deque<Diagnostic>& diagnostics() const { return diagnostics_; }
+  [[nodiscard]] const SourceManager& sources() const { return *sources_; }
 
   // Orders diagnostics by file, line and column (stable; those without a position first), so that a
   // user reads them top to bottom whatever pass found them.

@@ -1,0 +1,301 @@
+// verify(): the engines run as `check` runs them, and their results gathered into one Report
+// (verify.hpp). The words each verdict's coverage is given in are those `check` prints.
+#include "semo/checker/verify.hpp"
+
+#include <algorithm>
+
+#include "semo/checker/fingerprint.hpp"
+
+namespace semo::checker {
+
+namespace {
+
+std::string steps(std::size_t n) { return std::to_string(n) + (n == 1 ? " step" : " steps"); }
+
+bool anyViolated(const std::vector<PropertyResult>& properties) {
+  return std::any_of(properties.begin(), properties.end(), [](const PropertyResult& p) { return p.verdict == Verdict::Violated; });
+}
+
+PropertyVerdict verdictOf(const PropertyResult& p, PropertyVerdict::Kind kind, const char* engine) {
+  PropertyVerdict v;
+  v.name = p.name;
+  v.origin = p.origin;
+  v.kind = kind;
+  v.verdict = p.verdict;
+  v.engine = engine;
+  v.counterexample = p.counterexample;
+  return v;
+}
+
+// The explicit engine's verdicts on the invariants.
+void explicitSafetyVerdicts(Report& out) {
+  const SearchResult& r = out.safety;
+  for (const PropertyResult& p : r.properties) {
+    PropertyVerdict v = verdictOf(p, PropertyVerdict::Kind::Safety, "explicit");
+    if (p.verdict == Verdict::Proven) {
+      v.proof = ProofKind::CompleteSearch;
+      v.coverage = "all " + std::to_string(r.states) + " reachable states" + (r.symmetry.empty() ? "" : " up to symmetry") +
+                   ", under the assumptions above";
+    } else if (p.verdict == Verdict::Unknown && r.depthBounded) {
+      v.coverage = "holds on every path of up to " + steps(r.depth) + ", " + std::to_string(r.states) + " states; longer paths not explored";
+    } else if (p.verdict == Verdict::Unknown) {
+      v.coverage = "not violated in the " + std::to_string(r.states) + " states explored; the search was not complete";
+    } else if (p.counterexample) {
+      v.coverage = "counterexample of " + steps(p.counterexample->steps.size()) + " below";
+    }
+    out.properties.push_back(std::move(v));
+  }
+}
+
+// The explicit engine's verdicts on the LTL properties (after the others).
+void livenessVerdicts(Report& out) {
+  const LivenessResult& live = out.liveness;
+  for (std::size_t k = 0; k < live.properties.size(); ++k) {
+    const PropertyResult& p = live.properties[k];
+    PropertyVerdict v = verdictOf(p, PropertyVerdict::Kind::Liveness, "explicit");
+    const std::string note = k < live.notes.size() ? live.notes[k] : std::string();
+    if (p.verdict == Verdict::Proven) {
+      v.proof = ProofKind::CompleteSearch;
+      v.coverage = "every fair run, under the assumptions above";
+    } else if (p.verdict == Verdict::Unknown && out.livenessSkipped.empty()) {
+      v.coverage = "no violation found in the part explored; the search was not complete";
+    } else if (!note.empty()) {
+      v.coverage = note;
+    } else if (p.counterexample) {
+      const Trace& t = *p.counterexample;
+      v.coverage = "lasso of " + steps(t.steps.size()) + " below, " +
+                   (t.loopStart >= t.steps.size() ? std::string("then it stays for ever") : "loop from step " + std::to_string(t.loopStart + 1));
+    }
+    out.properties.push_back(std::move(v));
+  }
+}
+
+void runSmt(Report& out, const ir::Model& model, const model::MissionModel* mission, const VerifyOptions& options,
+            const SourceManager& sources) {
+  out.engine = Engine::Smt;
+  SmtOptions smt = options.smt;
+  if (options.limits.maxDepth != UINT32_MAX) smt.maxDepth = options.limits.maxDepth;
+  out.smt = checkSafetySmt(model, smt);
+  const SmtResult& s = *out.smt;
+  out.safety = s.search;
+  if (mission != nullptr) {
+    const model::MissionModel& m = *mission;
+    std::vector<std::int64_t> budget = m.assumptions.crashBudget;  // or the one --crash asks for, as the translation took it
+    if (options.crashOverride) {
+      for (std::size_t t = 0; t < m.teams.size() && t < budget.size(); ++t) {
+        budget[t] = std::min<std::int64_t>(*options.crashOverride, static_cast<std::int64_t>(m.teams[t].robots.size()));
+      }
+    }
+    out.formation = checkGroupFormation(m, &budget);
+    for (const FormationVerdict& v : out.formation) {
+      const SourceRange& at = m.groupBlocks[v.blockIndex].at;
+      out.formationOrigins.push_back(at.begin.valid() ? sources.path(at.begin.file) + ":" + std::to_string(at.begin.line) + ":" +
+                                                            std::to_string(at.begin.column)
+                                                      : "");
+    }
+  }
+  const SearchResult& r = out.safety;
+  for (std::size_t j = 0; j < r.properties.size(); ++j) {
+    const PropertyResult& p = r.properties[j];
+    PropertyVerdict v = verdictOf(p, PropertyVerdict::Kind::Safety, "smt");
+    if (s.proof[j] == SmtProof::Induction) {
+      v.proof = ProofKind::KInduction;
+      v.k = s.inductionDepth[j];
+      v.coverage = "proven by k-induction at k = " + std::to_string(v.k) + ", under the assumptions above";
+    } else if (s.proof[j] == SmtProof::Ic3) {
+      v.proof = ProofKind::Ic3;
+      v.conjuncts = s.invariantConjuncts[j];
+      v.coverage = "proven by induction with a strengthening invariant of " + std::to_string(v.conjuncts) +
+                   (v.conjuncts == 1 ? " conjunct" : " conjuncts") + " found by IC3 and checked independently, under the assumptions above";
+    } else if (p.verdict == Verdict::Proven) {
+      v.proof = ProofKind::Exhausted;
+      v.coverage = "no path is longer than " + std::to_string(s.bmcDepth) + " steps: every reachable state checked, under the assumptions above";
+    } else if (p.verdict == Verdict::Unknown && !r.rangeError) {
+      v.coverage = "holds on every path of up to " + std::to_string(s.bmcDepth) + " steps; not proven for longer ones" +
+                   (!smt.induction && !smt.ic3 ? std::string()
+                                               : ": no induction up to k = " + std::to_string(std::min(s.bmcDepth + 1, smt.maxInduction)) +
+                                                     ", IC3 undecided");
+    } else if (p.counterexample) {
+      v.coverage = "counterexample of " + steps(p.counterexample->steps.size()) + " below" +
+                   (s.deepCounterexample[j] != 0 ? ", found by IC3 beyond depth " + std::to_string(s.bmcDepth) + "; a shorter one may exist" : "");
+    }
+    out.properties.push_back(std::move(v));
+  }
+  for (std::size_t b = 0; b < out.formation.size(); ++b) {
+    const FormationVerdict& f = out.formation[b];
+    PropertyVerdict v;
+    v.name = "group_formation[" + f.block + "]";
+    v.origin = out.formationOrigins[b];
+    v.kind = PropertyVerdict::Kind::GroupFormation;
+    v.engine = "smt";
+    v.verdict = f.holds() ? Verdict::Proven : Verdict::Violated;
+    if (f.holds()) {
+      v.proof = ProofKind::Z3Formation;
+      v.coverage = "every crash set of up to " + std::to_string(f.budget) + " robots leaves it formable; it tolerates " + std::to_string(f.tolerated);
+    }
+    out.properties.push_back(std::move(v));
+  }
+  // The smt engine decides safety only.
+  for (const ir::Property& p : model.properties) {
+    PropertyVerdict v;
+    v.name = p.name;
+    v.origin = p.origin;
+    v.kind = PropertyVerdict::Kind::Liveness;
+    v.engine = "smt";
+    v.coverage = "not checked: the smt engine decides safety properties only";
+    out.properties.push_back(std::move(v));
+  }
+  bool violated = r.rangeError.has_value() || anyViolated(r.properties);
+  for (const FormationVerdict& f : out.formation) violated = violated || !f.holds();
+  bool undecided = !model.properties.empty();
+  for (const PropertyResult& p : r.properties) undecided = undecided || p.verdict == Verdict::Unknown;
+  out.exitCode = violated ? 1 : undecided ? 3 : 0;
+}
+
+void runExplicit(Report& out, const ir::Model& model, const model::MissionModel* mission, const VerifyOptions& options,
+                 const SourceManager& sources) {
+  const bool automatic = options.engine == Engine::Auto;
+  SearchLimits limits = options.limits;
+  if (automatic) {
+    // The probe is never depth-bounded: a bound is for BMC, should smt be chosen.
+    limits.maxStates = std::min(options.limits.maxStates, kAutoStateBudget);
+    limits.maxDepth = UINT32_MAX;
+  }
+  out.engine = Engine::Explicit;
+  out.safety = checkSafety(model, limits);
+  const SearchResult& r = out.safety;
+  if (automatic) {
+    const bool found = r.rangeError.has_value() || anyViolated(r.properties);
+    if (!r.complete && !found && !r.depthBounded) {
+      out.engineReason = "the explicit search did not cover the state space within its budget of " + std::to_string(limits.maxStates) +
+                         " states (stopped after " + std::to_string(r.states) + "), so smt";
+      runSmt(out, model, mission, options, sources);
+      return;
+    }
+    out.engineReason = found ? "explicit search found a violation within its budget of " + std::to_string(kAutoStateBudget) + " states"
+                             : "the state space fits the explicit engine's budget of " + std::to_string(kAutoStateBudget) + " states";
+    limits.maxStates = options.limits.maxStates;  // the liveness products get the usual limit
+  }
+  explicitSafetyVerdicts(out);
+
+  // Liveness needs the whole product: not after a modelling error, and never depth-bounded.
+  LivenessResult& live = out.liveness;
+  if (!model.properties.empty()) {
+    if (options.safetyOnly) out.livenessSkipped = "not checked: --safety-only";
+    else if (r.rangeError) out.livenessSkipped = "not checked: the model has an error";
+    else if (limits.maxDepth != UINT32_MAX) out.livenessSkipped = "not checked: --max-depth bounds safety only";
+    if (out.livenessSkipped.empty()) {
+      live = checkLiveness(model, limits);
+    } else {
+      live.complete = false;
+      live.limitReached = out.livenessSkipped;
+      for (const ir::Property& p : model.properties) live.properties.push_back({p.name, p.origin, Verdict::Unknown, {}});
+    }
+  }
+  livenessVerdicts(out);
+  const bool violated = r.rangeError.has_value() || anyViolated(r.properties) || anyViolated(live.properties);
+  out.exitCode = violated ? 1 : r.complete && live.complete ? 0 : 3;
+}
+
+// 0 sound everywhere; 1 a real defect (inconsistent, deadlocking, a bound refuted); 3 undecided.
+int taskGraphCode(const std::vector<TaskGraphReport>& graphs) {
+  bool sound = true, decided = true;
+  for (const TaskGraphReport& g : graphs) {
+    for (const sdf::ScenarioAnalysis& a : g.analysis.scenarios) {
+      sound = sound && a.sound();
+      decided = decided && a.decided();
+    }
+  }
+  return sound ? 0 : decided ? 1 : 3;
+}
+
+// Why a scenario is not sound, in the words `sdf` prints.
+std::string scenarioDefect(const sdf::ScenarioAnalysis& a) {
+  if (!a.repetition.consistent()) return "inconsistent (" + a.repetition.error + ")";
+  if (!a.iteration.error.empty()) return "deadlock freedom unknown (" + a.iteration.error + ")";
+  if (!a.iteration.deadlockFree) return "deadlocks";
+  if (!a.unbounded.error.empty()) return "period not computed (" + a.unbounded.error + ")";
+  if (!a.bounds.haveBounds) return "buffer bounds unknown (" + a.bounds.error + ")";
+  std::string out;
+  for (const auto* b : {&a.bounds.deadlockFree, &a.bounds.maxThroughput}) {
+    const char* which = b == &a.bounds.deadlockFree ? "deadlock-free" : "max-throughput";
+    if (b->safety != sdf::ProofStatus::Proven) out += std::string(out.empty() ? "" : "; ") + which + " bounds: no overflow/underflow " + sdf::proofStatusName(b->safety);
+    if (b->minimality != sdf::ProofStatus::Proven) out += std::string(out.empty() ? "" : "; ") + which + " bounds: minimal " + sdf::proofStatusName(b->minimality);
+  }
+  return out;
+}
+
+}  // namespace
+
+const char* const kTaskGraphAssumptions =
+    "execution times are the strategy's worst cases (generated control and communication tasks: 1 ms nominal); "
+    "a task's firings run one at a time; channels are FIFO with space claimed when a firing starts and freed when "
+    "the consuming firing ends; messages between robots are outside these graphs";
+
+const char* proofKindName(ProofKind k) {
+  switch (k) {
+    case ProofKind::None: return "none";
+    case ProofKind::CompleteSearch: return "complete search";
+    case ProofKind::Exhausted: return "bounded model checking, every path exhausted";
+    case ProofKind::KInduction: return "k-induction";
+    case ProofKind::Ic3: return "IC3 invariant";
+    case ProofKind::Z3Formation: return "Z3, every crash set";
+  }
+  return "none";
+}
+
+const char* propertyKindName(PropertyVerdict::Kind k) {
+  switch (k) {
+    case PropertyVerdict::Kind::Safety: return "safety";
+    case PropertyVerdict::Kind::Liveness: return "liveness";
+    case PropertyVerdict::Kind::GroupFormation: return "group formation";
+  }
+  return "safety";
+}
+
+std::vector<std::string> Report::unproven() const {
+  std::vector<std::string> out;
+  if (safety.rangeError) out.push_back("the model has an error: " + safety.limitReached);
+  for (const PropertyVerdict& p : properties) {
+    if (p.verdict == Verdict::Proven) continue;
+    out.push_back(std::string(verdictName(p.verdict)) + " " + p.name + (p.coverage.empty() ? "" : " (" + p.coverage + ")"));
+  }
+  for (const TaskGraphReport& g : taskGraphs) {
+    for (const sdf::ScenarioAnalysis& a : g.analysis.scenarios) {
+      if (!a.sound()) out.push_back("task graph of " + g.graph.robot + ", scenario " + a.scenario + ": " + scenarioDefect(a));
+    }
+  }
+  return out;
+}
+
+void addTaskGraphs(Report& report, std::vector<sdf::TaskGraph> graphs, const sdf::BoundsOptions& bounds) {
+  report.taskGraphAssumptions = kTaskGraphAssumptions;
+  sdf::ScenarioCache cache;  // robots of one type in one role: each distinct scenario graph once
+  for (sdf::TaskGraph& g : graphs) {
+    sdf::TaskGraphAnalysis analysis = sdf::analyseTaskGraph(g, bounds, &cache);
+    report.taskGraphs.push_back({std::move(g), std::move(analysis)});
+  }
+  const int code = taskGraphCode(report.taskGraphs);
+  // A violation anywhere wins; then anything undecided; 0 only when both halves are.
+  if (report.exitCode == 1 || code == 1) report.exitCode = 1;
+  else if (report.exitCode == 3 || code == 3) report.exitCode = 3;
+}
+
+std::optional<Report> verify(const ir::Model& model, const model::MissionModel* mission, const VerifyOptions& options,
+                             DiagnosticEngine& diags) {
+  Report out;
+  out.modelFingerprint = modelFingerprint(model);
+  out.assumptions = model.assumptions;
+  if (options.properties) {
+    if (options.engine == Engine::Smt) runSmt(out, model, mission, options, diags.sources());
+    else runExplicit(out, model, mission, options, diags.sources());
+  }
+  if (options.taskGraphs && mission != nullptr) {
+    std::optional<std::vector<sdf::TaskGraph>> graphs = sdf::generateTaskGraphs(*mission, diags);
+    if (!graphs) return std::nullopt;
+    addTaskGraphs(out, std::move(*graphs), options.bounds);
+  }
+  return out;
+}
+
+}  // namespace semo::checker

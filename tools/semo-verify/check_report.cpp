@@ -1,0 +1,183 @@
+// A Report (checker/verify.hpp) as `check` prints it: text for people, JSON for tools (specs/trace.md).
+#include <sstream>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "semo/checker/trace.hpp"
+
+namespace semo::cli {
+
+namespace {
+
+using checker::PropertyVerdict;
+using Kind = PropertyVerdict::Kind;
+
+std::string joined(const std::vector<std::string>& parts, const char* separator = ", ") {
+  std::string out;
+  for (const std::string& p : parts) out += (out.empty() ? "" : separator) + p;
+  return out;
+}
+
+std::string fairnessLine(const ir::Model& m) {
+  std::size_t weak = 0, strong = 0;
+  for (const ir::Rule& r : m.rules) {
+    if (r.stronglyFair) ++strong;
+    else if (r.weaklyFair) ++weak;
+  }
+  std::string out = std::to_string(weak) + " rules weakly fair (robot steps, deliveries: enabled for ever, taken eventually)";
+  if (strong > 0) out += ", " + std::to_string(strong) + " strongly fair (deliveries under fair loss)";
+  return out;
+}
+
+void verdictLines(std::string& out, const checker::Report& r, Kind kind) {
+  for (const PropertyVerdict& p : r.properties) {
+    if (p.kind != kind) continue;
+    out += "  " + std::string(checker::verdictName(p.verdict)) + "  " + p.name + (p.coverage.empty() ? "" : "  (" + p.coverage + ")") + "\n";
+  }
+}
+
+void formationLines(std::string& out, const checker::Report& r) {
+  if (!r.formation.empty()) out += "group formation, for every crash set within the budget (Z3):\n";
+  for (std::size_t b = 0; b < r.formation.size(); ++b) {
+    const checker::FormationVerdict& v = r.formation[b];
+    out += "  " + std::string(v.holds() ? "proven" : "VIOLATED") + "  " + v.block + " at " + r.formationOrigins[b];
+    if (v.holds()) {
+      out += "  (every crash set of up to " + std::to_string(v.budget) + " robots leaves it formable; it tolerates " + std::to_string(v.tolerated) + ")";
+    } else if (v.breakingSet.empty()) {
+      out += "  (cannot be formed even with every robot alive: " + joined(v.unmetArms) + " cannot all get a robot of their own)";
+    } else {
+      out += "  (smallest crash set that breaks it: " + joined(v.breakingSet) + "; then " +
+             (v.unmetArms.size() == 1 ? "no live robot is left for " + v.unmetArms[0] : joined(v.unmetArms) + " cannot all get a robot of their own") + ")";
+    }
+    out += "\n";
+  }
+}
+
+// The counterexamples, after every verdict.
+void counterexamples(std::string& out, const checker::Report& r, const ir::Model& model) {
+  for (const PropertyVerdict& p : r.properties) {
+    if (p.counterexample) out += "\n" + checker::traceToText(model, *p.counterexample);
+  }
+  if (r.safety.rangeError) out += "\nmodel error: " + r.safety.limitReached + "\n" + checker::traceToText(model, *r.safety.rangeError);
+}
+
+}  // namespace
+
+std::string fmtSeconds(double seconds) {
+  std::ostringstream out;
+  out << seconds;
+  return out.str();
+}
+
+std::string reportText(const checker::Report& r, const ir::Model& model, const std::string& input, bool bmcOnly) {
+  std::string out = "model:       " + input + " (" + std::to_string(model.variables.size()) + " variables, " + std::to_string(model.rules.size()) + " rules)\n";
+  out += "assumptions: " + (r.assumptions.empty() ? std::string("none stated") : joined(r.assumptions, "; ")) + "\n";
+  const checker::SearchResult& s = r.safety;
+  if (r.engine == checker::Engine::Smt) {
+    out += "engine:      smt (Z3): bounded model checking to depth " + std::to_string(r.smt->bmcDepth) +
+           (bmcOnly ? " only (--bmc-only)" : ", then k-induction and IC3") + ", " + fmtSeconds(s.seconds) + " s\n";
+    if (!r.engineReason.empty()) out += "             (--engine auto: " + r.engineReason + ")\n";
+    formationLines(out, r);
+    verdictLines(out, r, Kind::Safety);
+    verdictLines(out, r, Kind::Liveness);
+    if (!r.smt->note.empty()) out += "note:        " + r.smt->note + "\n";
+    counterexamples(out, r, model);
+    return out;
+  }
+  if (!r.engineReason.empty()) out += "engine:      explicit (--engine auto: " + r.engineReason + ")\n";
+  for (const std::string& c : s.symmetry) out += "symmetry:    interchangeable " + c + "\n";
+  out += "explored:    " + std::to_string(s.states) + " states, " + std::to_string(s.transitions) + " transitions, depth " +
+         std::to_string(s.depth) + " (" + (s.complete ? "complete" : "PARTIAL: " + s.limitReached) + "), " + fmtSeconds(s.seconds) + " s\n";
+  verdictLines(out, r, Kind::Safety);
+  if (!model.properties.empty()) {
+    const checker::LivenessResult& live = r.liveness;
+    out += "liveness:    ";
+    if (!r.livenessSkipped.empty()) {
+      out += r.livenessSkipped + "\n";
+    } else {
+      out += std::to_string(live.states) + " product states, " + std::to_string(live.transitions) + " transitions";
+      if (live.reducedProperties > 0) {
+        out += " (up to symmetry for " + std::to_string(live.reducedProperties) + " of " + std::to_string(live.properties.size()) + " properties)";
+      }
+      out += " (" + (live.complete ? std::string("complete") : "PARTIAL: " + live.limitReached) + "), " + fmtSeconds(live.seconds) + " s\n";
+      out += "fairness:    " + fairnessLine(model) + "\n";
+    }
+    verdictLines(out, r, Kind::Liveness);
+  }
+  counterexamples(out, r, model);
+  return out;
+}
+
+nlohmann::json reportJson(const checker::Report& r, const ir::Model& model, const ModelInput& in) {
+  using nlohmann::json;
+  // Every counterexample names the model it belongs to, so that it can be read back on its own.
+  auto traceJson = [&](const checker::Trace& t) {
+    json j = json::parse(checker::traceToJson(model, t));
+    j["modelFingerprint"] = r.modelFingerprint;
+    return j;
+  };
+  const checker::SearchResult& s = r.safety;
+  json props = json::array();
+  const bool smt = r.engine == checker::Engine::Smt;
+  std::size_t invariant = 0, ltl = 0;
+  for (const PropertyVerdict& p : r.properties) {
+    if (p.kind == Kind::GroupFormation) continue;  // in "groupFormation"
+    json jp = {{"name", p.name}, {"verdict", checker::verdictName(p.verdict)}, {"origin", p.origin},
+               {"type", p.kind == Kind::Safety ? "safety" : "liveness"}};
+    if (p.kind == Kind::Safety && smt) {
+      const std::size_t j = invariant;
+      if (r.smt->inductionDepth[j] != 0) jp["inductionDepth"] = r.smt->inductionDepth[j];
+      if (p.proof == checker::ProofKind::Exhausted) jp["proof"] = "exhausted";
+      if (p.proof == checker::ProofKind::KInduction) jp["proof"] = "k-induction";
+      if (p.proof == checker::ProofKind::Ic3) {
+        jp["proof"] = "ic3";
+        jp["invariantConjuncts"] = p.conjuncts;
+      }
+      if (r.smt->deepCounterexample[j] != 0) jp["beyondBmcDepth"] = true;
+    }
+    if (p.kind == Kind::Liveness) {
+      if (smt) jp["note"] = p.coverage;
+      else if (ltl < r.liveness.notes.size() && !r.liveness.notes[ltl].empty()) jp["note"] = r.liveness.notes[ltl];
+      ++ltl;
+    } else {
+      ++invariant;
+    }
+    if (p.counterexample) jp["counterexample"] = traceJson(*p.counterexample);
+    props.push_back(jp);
+  }
+  json root = {{"input", in.input}, {"assumptions", r.assumptions}, {"complete", s.complete}, {"seconds", s.seconds},
+               {"properties", props}, {"exitCode", r.exitCode}, {"modelFingerprint", r.modelFingerprint}};
+  addModelInput(root, in);  // what `replay` needs to build the same model again
+  if (!r.engineReason.empty()) root["engineChoice"] = r.engineReason;
+  if (s.rangeError) root["modelError"] = traceJson(*s.rangeError);
+  if (smt) {
+    root["engine"] = "smt";
+    root["bmcDepth"] = r.smt->bmcDepth;
+    json formation = json::array();
+    for (std::size_t b = 0; b < r.formation.size(); ++b) {
+      const checker::FormationVerdict& v = r.formation[b];
+      formation.push_back({{"block", v.block}, {"origin", r.formationOrigins[b]}, {"budget", v.budget}, {"tolerated", v.tolerated},
+                           {"verdict", v.holds() ? "proven" : "VIOLATED"}, {"breakingSet", v.breakingSet}, {"unmetArms", v.unmetArms}});
+    }
+    root["groupFormation"] = formation;
+    if (!r.smt->note.empty()) root["note"] = r.smt->note;
+    return root;
+  }
+  root["engine"] = "explicit";
+  root["states"] = s.states;
+  root["transitions"] = s.transitions;
+  root["depth"] = s.depth;
+  root["bytesPerState"] = s.bytesPerState;
+  root["symmetry"] = s.symmetry;
+  if (!s.limitReached.empty()) root["limit"] = s.limitReached;
+  if (s.depthBounded) root["boundedDepth"] = s.depth;
+  if (!model.properties.empty()) {
+    const checker::LivenessResult& live = r.liveness;
+    root["liveness"] = {{"productStates", live.states}, {"productTransitions", live.transitions}, {"complete", live.complete},
+                        {"seconds", live.seconds}, {"propertiesUpToSymmetry", live.reducedProperties}};
+    if (!live.limitReached.empty()) root["liveness"]["limit"] = live.limitReached;
+  }
+  return root;
+}
+
+}  // namespace semo::cli
