@@ -20,6 +20,7 @@ struct DataflowTask {
   Kind kind = Kind::Service;
   std::vector<std::string> implements;  // the services or sensed values it implements, or what it carries ("topic SlaveTeam.Message")
   std::int64_t execMicros = 0;          // worst case per firing (the strategy's; 1 ms for generated tasks)
+  friend bool operator==(const DataflowTask&, const DataflowTask&) = default;
 };
 
 struct DataflowChannel {
@@ -27,6 +28,7 @@ struct DataflowChannel {
   std::uint32_t from = 0, to = 0;
   bool control = false;       // between a task's interface port and the control task
   std::int64_t capacity = 0;  // the largest max-throughput bound over the scenarios that use it (0: in none with bounds)
+  friend bool operator==(const DataflowChannel&, const DataflowChannel&) = default;
 };
 
 // One scenario: a mode of the robot's team with, for each plan that calls services in it, the one
@@ -42,6 +44,7 @@ struct ScenarioTable {
   struct Firing {
     std::uint32_t task = 0;
     std::int64_t repetitions = 1;
+    friend bool operator==(const Firing&, const Firing&) = default;
   };
   std::vector<Firing> schedule;
   // The channels the scenario uses, with its rates; `capacity` repeats the robot's proven capacity of
@@ -50,6 +53,7 @@ struct ScenarioTable {
     std::uint32_t channel = 0;  // into DataflowTable::channels
     std::uint32_t from = 0, to = 0;
     std::int64_t production = 1, consumption = 1, initialTokens = 0, capacity = 0;
+    friend bool operator==(const Channel&, const Channel&) = default;
   };
   std::vector<Channel> channels;
   std::int64_t periodNum = 0, periodDen = 1;  // microseconds per iteration, exact (self-timed, within the capacities)
@@ -61,12 +65,14 @@ struct ScenarioTable {
   // minimal is the analysis' business, `semo-verify sdf`; running does not depend on it.)
   bool proven = false;
   std::string notProven;  // why not, in words (empty when proven)
+  friend bool operator==(const ScenarioTable&, const ScenarioTable&) = default;
 };
 
 struct DataflowTable {
   std::vector<DataflowTask> tasks;  // the control task first
   std::vector<DataflowChannel> channels;
   std::vector<ScenarioTable> scenarios;
+  friend bool operator==(const DataflowTable&, const DataflowTable&) = default;
 };
 
 }  // namespace semo::runtime

@@ -18,6 +18,7 @@ struct DriveGeometry {
   double wheelSeparation = 0;   // metres (wheeled)
   double maxSpeed = 0.3;        // m/s, forward or backward
   double maxTurnRate = 1.5;     // rad/s
+  friend bool operator==(const DriveGeometry&, const DriveGeometry&) = default;
 };
 
 class Body {

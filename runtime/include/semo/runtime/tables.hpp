@@ -27,6 +27,7 @@ struct SensedValueTable {
   Domain domain = Domain::Bool;
   std::vector<double> thresholds;    // Threshold
   std::vector<std::string> symbols;  // Enum
+  friend bool operator==(const SensedValueTable&, const SensedValueTable&) = default;
 };
 
 // An operand of a condition or a call argument.
@@ -42,6 +43,7 @@ struct Operand {
   double number = 0;
   std::string text;
   Id index = kNone;
+  friend bool operator==(const Operand&, const Operand&) = default;
 };
 
 // A condition of an `if` or a `repeat`, as a tree in MissionTables::conditions.
@@ -52,6 +54,7 @@ struct CondNode {
   Rel rel = Rel::Eq;
   Operand lhs, rhs;                // Compare: both; Test: lhs
   Id left = kNone, right = kNone;  // Not: left; And/Or: both
+  friend bool operator==(const CondNode&, const CondNode&) = default;
 };
 
 // A primitive service call as written: move("base camp").
@@ -59,6 +62,7 @@ struct CallTable {
   std::string service;
   std::vector<Operand> args;
   std::string origin;  // "file:line:col"
+  friend bool operator==(const CallTable&, const CallTable&) = default;
 };
 
 // ------------------------------------------------------------------ step tables
@@ -77,6 +81,7 @@ struct ActionRow {
   Id index = kNone;
   double seconds = 0;
   bool expect = true;
+  friend bool operator==(const ActionRow&, const ActionRow&) = default;
 };
 
 // Must hold when the step commits (atomically with its effects).
@@ -95,6 +100,7 @@ struct GuardRow {
   Id index = kNone;
   Id plan = kNone;
   std::int64_t count = 0;
+  friend bool operator==(const GuardRow&, const GuardRow&) = default;
 };
 
 // What the step does when it commits, in order.
@@ -114,6 +120,7 @@ struct EffectRow {
   Id arm = kNone;
   Id team = kNone;  // Publish: the team it goes to
   Operand value;    // Publish: `number` is the value the model's slots get, `text` what is sent
+  friend bool operator==(const EffectRow&, const EffectRow&) = default;
 };
 
 struct Row {
@@ -123,6 +130,7 @@ struct Row {
   std::vector<GuardRow> guards;
   std::vector<EffectRow> effects;
   Id irRule = kNone;  // MissionTables::rules
+  friend bool operator==(const Row&, const Row&) = default;
 };
 
 // One instruction of a plan program, as the runtime needs it.
@@ -133,6 +141,7 @@ struct PlanPoint {
   Id service = kNone;     // the service (MissionTables::services) this instruction belongs to
   Id work = kNone;        // a group service call (MissionTables::calls): the robot works in it while it rests here
   std::string label;      // "Search#7"
+  friend bool operator==(const PlanPoint&, const PlanPoint&) = default;
 };
 
 struct PlanTable {
@@ -140,6 +149,7 @@ struct PlanTable {
   std::vector<PlanPoint> points;  // per program counter (0: done)
   std::vector<Row> rows;          // sorted by `from`; rows of one `from` share their actions up to where tests part them
   std::vector<Id> firstRow;       // per program counter: its first row (rows.size() if none); firstRow[pc + 1] ends them
+  friend bool operator==(const PlanTable&, const PlanTable&) = default;
 };
 
 // ------------------------------------------------------------------ teams, messages, groups
@@ -149,6 +159,7 @@ struct ModeTable {
   std::vector<Id> entry;  // per plan of the team: the program counter the mode starts it at (0: runs nothing)
   std::vector<std::pair<Id, Id>> catches;  // (event, target mode)
   Id defaultTarget = kNone;                // `default: mode = M` once every plan is done
+  friend bool operator==(const ModeTable&, const ModeTable&) = default;
 };
 
 struct EventTable {
@@ -156,6 +167,7 @@ struct EventTable {
   bool reliable = false;        // the strategy's delivery="reliable": never lost
   std::int64_t retransmissions = 0;
   bool lossy = false;           // the model lets it be lost (assume loss events)
+  friend bool operator==(const EventTable&, const EventTable&) = default;
 };
 
 struct TeamTable {
@@ -166,6 +178,7 @@ struct TeamTable {
   Id initialMode = 0;
   std::vector<EventTable> events;
   std::int64_t crashBudget = 0;  // the model's assumption
+  friend bool operator==(const TeamTable&, const TeamTable&) = default;
 };
 
 struct TopicTable {
@@ -176,11 +189,13 @@ struct TopicTable {
   std::int64_t capacity = 1;         // reliable: the channel's capacity
   bool lossy = false;                // publish: the model lets it be lost
   std::vector<Id> subscribers;       // robots that keep a view (and a message slot) of it
+  friend bool operator==(const TopicTable&, const TopicTable&) = default;
 };
 
 struct ServiceTable {
   std::string name;  // a composite service of the mission
   std::string plan;
+  friend bool operator==(const ServiceTable&, const ServiceTable&) = default;
 };
 
 // A knowledge item of a group service, shared by the robots of `team` working in it.
@@ -194,6 +209,7 @@ struct KnowledgeTable {
   double period = 1;             // seconds between broadcasts
   std::int64_t retransmissions = 0;
   bool lossy = false;            // the model lets gossip be lost
+  friend bool operator==(const KnowledgeTable&, const KnowledgeTable&) = default;
 };
 
 struct ArmTable {
@@ -201,6 +217,7 @@ struct ArmTable {
   bool leader = false, others = false;
   Id entry = 0, first = 0, end = 0;  // its program counters: entry, and the range [first, end)
   std::vector<Id> candidates;
+  friend bool operator==(const ArmTable&, const ArmTable&) = default;
 };
 
 struct GroupBlockTable {
@@ -209,6 +226,7 @@ struct GroupBlockTable {
   Id first = 0, formPoint = 0, exit = 0;  // instructions [first, formPoint]; exit == first
   std::vector<ArmTable> arms;
   Id leader = kNone;  // LeaderBlockTable index, for a leader block
+  friend bool operator==(const GroupBlockTable&, const GroupBlockTable&) = default;
 };
 
 struct LeaderBlockTable {
@@ -223,6 +241,7 @@ struct LeaderBlockTable {
   std::int32_t lossBurst = 1;
   Id leaderArm = kNone, othersArm = kNone;
   std::vector<Id> heartbeatRule;  // IR rule per set of candidates whose heartbeat is lost (bit i: candidates[i])
+  friend bool operator==(const LeaderBlockTable&, const LeaderBlockTable&) = default;
 };
 
 // ------------------------------------------------------------------ robots
@@ -243,11 +262,13 @@ struct RobotTable {
   struct Discover {
     Id knowledge = kNone, plan = kNone, pc = kNone, rule = kNone;
     Id started = kNone;  // pc set of the synchronised start (GuardRow::GroupStarted), kNone: none
+    friend bool operator==(const Discover&, const Discover&) = default;
   };
   std::vector<Discover> discoverRules;
   // per entry of `knowledge`: [teacher * (facts + 1) + count] -> the rule "learns from teacher, now holds count"
   std::vector<std::vector<Id>> learnRule;
   DataflowTable dataflow;  // its task graph, proven capacities and static schedules (empty: not projected)
+  friend bool operator==(const RobotTable&, const RobotTable&) = default;
 };
 
 // ------------------------------------------------------------------ the abstraction function
@@ -260,17 +281,20 @@ struct AbstractVar {
   Id robot = kNone, team = kNone, index = kNone;  // index: plan, event, topic, leader block (LeaderBlockTable), knowledge item
   std::int32_t init = 0;
   std::string name;  // the IR variable's name
+  friend bool operator==(const AbstractVar&, const AbstractVar&) = default;
 };
 
 struct RuleInfo {
   std::string name, label, origin;
   Id robot = kNone;
+  friend bool operator==(const RuleInfo&, const RuleInfo&) = default;
 };
 
 struct Assumptions {
   bool losePublish = false, loseEvents = false, loseKnowledge = false, loseHeartbeats = false;
   std::int32_t lossBurst = 1;
   std::vector<std::string> words;  // as every verdict states them
+  friend bool operator==(const Assumptions&, const Assumptions&) = default;
 };
 
 struct MissionTables {
@@ -289,6 +313,7 @@ struct MissionTables {
   std::vector<RuleInfo> rules;           // per IR rule, in the IR's order
   Assumptions assumptions;
   std::string modelFingerprint;
+  friend bool operator==(const MissionTables&, const MissionTables&) = default;
 };
 
 }  // namespace semo::runtime
