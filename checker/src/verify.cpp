@@ -2,6 +2,8 @@
 // (verify.hpp). The words each verdict's coverage is given in are those `check` prints.
 #include "semo/checker/verify.hpp"
 
+#include <z3.h>
+
 #include <algorithm>
 
 #include "semo/checker/fingerprint.hpp"
@@ -231,6 +233,12 @@ const char* const kTaskGraphAssumptions =
     "execution times are the strategy's worst cases (generated control and communication tasks: 1 ms nominal); "
     "a task's firings run one at a time; channels are FIFO with space claimed when a firing starts and freed when "
     "the consuming firing ends; messages between robots are outside these graphs";
+
+std::string z3Version() {
+  unsigned major = 0, minor = 0, build = 0, revision = 0;
+  Z3_get_version(&major, &minor, &build, &revision);
+  return std::to_string(major) + "." + std::to_string(minor) + "." + std::to_string(build) + "." + std::to_string(revision);
+}
 
 const char* proofKindName(ProofKind k) {
   switch (k) {

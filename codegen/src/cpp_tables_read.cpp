@@ -372,7 +372,12 @@ class Comparer {
       }
       for (std::size_t i = 0; i < e.size(); ++i) {
         const Node* c = n != nullptr && n->kind == Node::Kind::List && i < n->elements.size() ? &n->elements[i] : n;
-        if (!same(e[i], a[i], c, path + "[" + std::to_string(i) + "]")) return false;
+        if (!same(e[i], a[i], c, path + "[" + std::to_string(i) + "]")) {
+          if constexpr (std::is_same_v<E, Row>) {
+            if (diff_->irRule == kNone) diff_->irRule = e[i].irRule;  // a difference inside a row is about its rule
+          }
+          return false;
+        }
       }
       return true;
     } else if constexpr (std::is_class_v<T> && !std::is_same_v<T, std::string> && !IsPair<T>::value) {
@@ -399,15 +404,14 @@ class Comparer {
     for (const Row& r : e) {
       if (r.irRule == kNone || count(a, r.irRule) == 1) continue;
       differ(n, path, rowText(r), count(a, r.irRule) == 0 ? "none" : std::to_string(count(a, r.irRule)) + " rows",
-             count(a, r.irRule) == 0 ? "has no row for IR rule " + std::to_string(r.irRule) : "has several rows for IR rule " + std::to_string(r.irRule));
+             count(a, r.irRule) == 0 ? "has no row for this IR rule" : "has several rows for this IR rule");
       diff_->irRule = r.irRule;
       return false;
     }
     for (std::size_t i = 0; i < a.size(); ++i) {
       if (a[i].irRule == kNone || count(e, a[i].irRule) != 0) continue;
       const Node* c = n != nullptr && i < n->elements.size() ? &n->elements[i] : n;
-      differ(c, path + "[" + std::to_string(i) + "]", "none", rowText(a[i]), "is a row for IR rule " + std::to_string(a[i].irRule) +
-                                                                                 ", which is no step of this robot's program");
+      differ(c, path + "[" + std::to_string(i) + "]", "none", rowText(a[i]), "is a row for this IR rule, which is no step of this robot's program");
       diff_->irRule = a[i].irRule;
       return false;
     }

@@ -42,7 +42,8 @@ std::unique_ptr<BuiltModel> buildModel(const ModelInput& in) {
     options.crashOverride = in.crash;
     options.lossOverride = in.loss;
     options.fairLossOverride = in.fairLoss;
-    out->model = translate(*out->mission, options, out->sources, diags);
+    out->translation = translateMission(*out->mission, options, out->sources, diags);
+    if (out->translation) out->model = out->translation->model;
   }
   diags.sortByPosition();
   diags.print(std::cerr);

@@ -12,10 +12,15 @@
 
 #include "semo/checker/verify.hpp"
 #include "semo/frontend/source.hpp"
+#include "semo/runtime/tables.hpp"
 #include "semo/semantics/ir.hpp"
 #include "semo/semantics/mission_model.hpp"
+#include "semo/semantics/translate.hpp"
 
 namespace semo::cli {
+
+// The version every output names (--version, certificates).
+inline constexpr const char* kToolVersion = "0.1.0";
 
 // 4: a replay's running team departed from the counterexample (a bug of semo, never of the mission).
 enum ExitCode { kOk = 0, kViolated = 1, kBadInput = 2, kLimit = 3, kDiverged = 4 };
@@ -75,6 +80,19 @@ struct SdfOptions {
   std::optional<std::string> dotOut, sdf3Out;  // write the graph for Graphviz / in SDF3's format
 };
 
+struct EmitOptions {
+  CheckOptions check;  // the model and the engines, as for check
+  std::string out;
+  bool uncertified = false;
+  unsigned proofTimeoutMs = 10'000;  // each Z3 buffer-bound proof
+};
+
+struct CertifyOptions {
+  std::string dir;
+  bool json = false;
+  bool recheck = false;  // verify again and compare the verdicts with the certificate's
+};
+
 struct SimulateOptions {
   std::string mission, strategy;
   std::optional<std::string> robotsDir, world;
@@ -88,6 +106,7 @@ struct SimulateOptions {
   bool checkConformance = false;
   bool keepRunning = false;  // go on after the world's goal is reached, to --duration
   bool dataflow = true;      // project and run each robot's task graph (--no-dataflow: skip its analysis)
+  std::optional<std::string> generated;  // run the tables of a generated project's simulation module
 };
 
 struct ReplayOptions {
@@ -105,6 +124,7 @@ struct ReplayOptions {
 struct BuiltModel {
   SourceManager sources;
   std::optional<model::MissionModel> mission;
+  std::optional<Translation> translation;  // a mission's: the IR and what it means (emit projects it)
   std::optional<ir::Model> model;
 };
 // Diagnostics are printed; null on error.
@@ -139,6 +159,12 @@ bool outputsSpareInputs(const std::vector<Output>& outputs, const std::vector<st
 // Every file a run read through its SourceManager (mission, strategy, URDFs, ...), to add to `inputs`.
 std::vector<std::string> filesRead(const SourceManager& sources);
 
+// The tables of a generated project's simulation module (a build folder or the module itself);
+// nullopt with `error` when it cannot be loaded or was built against another runtime.
+std::optional<runtime::MissionTables> loadGeneratedTables(const std::string& path, std::string& error);
+// Where two tables first differ, in words ("" when they are equal).
+std::string firstTableDifference(const runtime::MissionTables& expected, const runtime::MissionTables& actual);
+
 int runParse(const ParseOptions& options);
 int runSdf(const SdfOptions& options);
 // `sdf MISSION --strategy S` and `sdf --graph G.json` (taskgraph_command.cpp).
@@ -148,5 +174,7 @@ int runExport(const ExportOptions& options);
 int runLint(const LintOptions& options);
 int runSimulate(const SimulateOptions& options);
 int runReplay(const ReplayOptions& options);
+int runEmit(const EmitOptions& options);
+int runCertify(const CertifyOptions& options);
 
 }  // namespace semo::cli

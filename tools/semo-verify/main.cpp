@@ -7,7 +7,7 @@
 
 int main(int argc, char** argv) {
   CLI::App app{"semo-verify: check a multi-robot mission (SeMo language) before it is deployed"};
-  app.set_version_flag("--version", "semo-verify 0.1.0");
+  app.set_version_flag("--version", std::string("semo-verify ") + semo::cli::kToolVersion);
   app.require_subcommand(1);
   app.footer("Exit codes: 0 clean, 1 property violated, 2 bad input, 3 resource limit reached.\n"
              "The language is described in specs/language.md, strategies in specs/strategy.md.");
@@ -40,26 +40,51 @@ int main(int argc, char** argv) {
     fair->excludes(unfair);
   };
 
+  // The engines' options, shared by check and emit.
+  auto addEngineOptions = [](CLI::App* cmd, semo::cli::CheckOptions& check) {
+    cmd->add_option("--max-states", check.maxStates, "Stop after this many states (per liveness product; exit 3, partial result)");
+    cmd->add_option("--max-memory", check.maxMemoryMiB, "Stop when the state store reaches this many MiB (exit 3)");
+    cmd->add_option("--max-depth", check.maxDepth,
+                    "Explore only paths of at most this many steps (bounded search: exit 3 unless nothing lies beyond)");
+    cmd->add_flag_callback("--no-symmetry", [&check] { check.symmetry = false; },
+                           "Store every state, not one per ordering of interchangeable robots (both searches)");
+    cmd->add_option("--threads", check.threads, "Threads for the searches (default: one per core; the results do not depend on it)")
+        ->check(CLI::Range(1u, 256u));
+    cmd->add_flag("--safety-only", check.safetyOnly, "Check the invariants and deadlock freedom only, not the LTL properties");
+    cmd->add_option("--engine", check.engine,
+                    "explicit: state-space search (default); smt: Z3, bounded model checking to --max-depth (default 5), "
+                    "then k-induction and IC3 for unbounded proofs, safety properties only; auto: explicit when the state "
+                    "space fits its budget (2,000,000 states, whatever --max-depth says), else smt (with --max-depth for BMC)")
+        ->check(CLI::IsMember({"explicit", "smt", "auto"}));
+    cmd->add_flag("--bmc-only", check.bmcOnly, "With the smt engine: bounded model checking only (no k-induction, no IC3)");
+    cmd->add_option("--smt-timeout", check.smtTimeoutS,
+                    "With the smt engine: give up a solver call (one BMC depth, one IC3 run) after this many seconds; 0: never (default 600)");
+  };
+
   semo::cli::CheckOptions check;
   CLI::App* checkCmd = app.add_subcommand("check", "Prove the mission's safety properties, or print a counterexample");
   addModelOptions(checkCmd, check.model);
-  checkCmd->add_option("--max-states", check.maxStates, "Stop after this many states (per liveness product; exit 3, partial result)");
-  checkCmd->add_option("--max-memory", check.maxMemoryMiB, "Stop when the state store reaches this many MiB (exit 3)");
-  checkCmd->add_option("--max-depth", check.maxDepth,
-                       "Explore only paths of at most this many steps (bounded search: exit 3 unless nothing lies beyond)");
-  checkCmd->add_flag_callback("--no-symmetry", [&check] { check.symmetry = false; },
-                              "Store every state, not one per ordering of interchangeable robots (both searches)");
-  checkCmd->add_option("--threads", check.threads, "Threads for the searches (default: one per core; the results do not depend on it)")
-      ->check(CLI::Range(1u, 256u));
-  checkCmd->add_flag("--safety-only", check.safetyOnly, "Check the invariants and deadlock freedom only, not the LTL properties");
+  addEngineOptions(checkCmd, check);
   checkCmd->add_flag("--json", check.json, "Print the verdicts and counterexamples as JSON (specs/trace.md)");
-  checkCmd->add_option("--engine", check.engine,
-                       "explicit: state-space search (default); smt: Z3, bounded model checking to --max-depth (default 5), "
-                       "then k-induction and IC3 for unbounded proofs, safety properties only; auto: explicit when the state "
-                       "space fits its budget (2,000,000 states, whatever --max-depth says), else smt (with --max-depth for BMC)")
-      ->check(CLI::IsMember({"explicit", "smt", "auto"}));
-  checkCmd->add_flag("--bmc-only", check.bmcOnly, "With the smt engine: bounded model checking only (no k-induction, no IC3)");
-  checkCmd->add_option("--smt-timeout", check.smtTimeoutS, "With the smt engine: give up a solver call (one BMC depth, one IC3 run) after this many seconds; 0: never (default 600)");
+
+  semo::cli::EmitOptions emit;
+  CLI::App* emitCmd = app.add_subcommand("emit", "Verify the mission, then write one C++ program per robot, a CMake project that builds them "
+                                                 "against semo_runtime, and certificate.json (specs/certificate.md); refuses (exit 1) "
+                                                 "unless every property and every buffer bound is proven");
+  addModelOptions(emitCmd, emit.check.model);
+  addEngineOptions(emitCmd, emit.check);
+  emitCmd->add_option("--out,-o", emit.out, "The folder to write (new, empty, or an earlier emit's, which is replaced)")->required();
+  emitCmd->add_flag("--uncertified", emit.uncertified,
+                    "Write the programs although not everything is proven: every file and the certificate say so (exit 0)");
+  emitCmd->add_option("--proof-timeout", emit.proofTimeoutMs, "Give up one Z3 buffer-bound query after this many milliseconds (default 10000)");
+
+  semo::cli::CertifyOptions certify;
+  CLI::App* certifyCmd = app.add_subcommand("certify", "Check a tree `emit` wrote without trusting it: the hashes of its inputs and files, and "
+                                                       "its tables read back and compared with the verified model's projection, made again "
+                                                       "from the inputs (exit 0 valid and certified, 1 a difference, 2 bad input, 3 valid but uncertified)");
+  certifyCmd->add_option("dir", certify.dir, "The folder emit wrote")->required();
+  certifyCmd->add_flag("--json", certify.json, "Print the findings as JSON");
+  certifyCmd->add_flag("--recheck", certify.recheck, "Also verify the mission again and compare every verdict with the certificate's");
 
   semo::cli::ExportOptions exportOptions;
   CLI::App* exportCmd = app.add_subcommand("export", "Write the mission's formal model as IR text or Promela");
@@ -111,6 +136,9 @@ int main(int argc, char** argv) {
   simulateCmd->add_flag("--keep-running", simulate.keepRunning, "Go on after the world's goal is reached, until --duration");
   simulateCmd->add_flag("--no-dataflow{false}", simulate.dataflow,
                         "Do not run the robots' task graphs (skips their analysis, which proves the channel capacities at startup)");
+  simulateCmd->add_option("--generated", simulate.generated,
+                          "Run the tables compiled in a generated project (emit, then build): its build folder or mission_simulation.so; "
+                          "refused unless they equal the verified model's projection");
   simulateCmd->add_flag("--check-conformance", simulate.checkConformance,
                         "Replay every step on the verified model as it happens; stop at the first step the model does not allow");
 
@@ -173,6 +201,8 @@ int main(int argc, char** argv) {
     }
     return semo::cli::runSimulate(simulate);
   }
+  if (*emitCmd) return semo::cli::runEmit(emit);
+  if (*certifyCmd) return semo::cli::runCertify(certify);
   if (*sdfCmd) {
     const int inputs = (sdfOptions.mission ? 1 : 0) + (sdfOptions.graphJson ? 1 : 0) + (sdfOptions.sdf3.empty() ? 0 : 1);
     if (inputs != 1) {

@@ -210,6 +210,25 @@ int runSimulate(const SimulateOptions& options) {
       std::cerr << "semo-verify: note: the robots' task graphs have errors (above): simulating without their dataflow\n";
     }
   }
+  if (options.generated) {
+    // The generated code's own tables run, once known to be the projection of the verified model.
+    std::string loadError;
+    std::optional<runtime::MissionTables> generated = loadGeneratedTables(*options.generated, loadError);
+    if (!generated) {
+      std::cerr << "semo-verify: error: --generated: " << loadError << "\n";
+      return kBadInput;
+    }
+    if (!options.dataflow) {
+      for (runtime::RobotTable& r : generated->robots) r.dataflow = {};
+    }
+    if (const std::string diff = firstTableDifference(tables, *generated); !diff.empty()) {
+      std::cerr << "semo-verify: error: --generated: the module's tables are not the verified model's projection: " << diff
+                << " (emit again from these inputs, and build)\n";
+      return kViolated;
+    }
+    tables = std::move(*generated);
+    std::cout << "running the generated tables of " << *options.generated << " (equal to the verified model's projection)\n";
+  }
   const runtime::TaskLibrary library = runtime::TaskLibrary::standard();
   auto runOne = [&](std::uint64_t seed) {
     sim.seed = seed;

@@ -112,6 +112,9 @@ std::optional<Report> verify(const ir::Model& model, const model::MissionModel* 
 // outcome into report.exitCode: `sdf` on a mission or on a task-graph file, and verify itself.
 void addTaskGraphs(Report& report, std::vector<sdf::TaskGraph> graphs, const sdf::BoundsOptions& bounds);
 
+// The version of Z3 the proofs ran on ("4.8.12.0"), as certificates record it.
+std::string z3Version();
+
 // What every task-graph verdict rests on (also Report::taskGraphAssumptions).
 extern const char* const kTaskGraphAssumptions;
 
