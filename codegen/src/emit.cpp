@@ -68,8 +68,8 @@ const semo::runtime::MissionTables& shared();
 )";
   for (const RobotTable& r : t.robots) out += "const semo::runtime::RobotTable& " + robotFunction(r) + "();\n";
   out += R"(
-// The shared tables with the full tables of `robots` (the others by identity only): a robot's
-// program holds its own tables, the simulator's module every robot's.
+// The shared tables with the full tables of `robots` (the others by identity only). Every program
+// of the project takes every robot's: a robot's program runs its own and follows its peers'.
 semo::runtime::MissionTables assemble(std::initializer_list<const semo::runtime::RobotTable*> robots);
 
 }  // namespace semo_mission
@@ -138,16 +138,23 @@ const RobotTable& )" +
 )";
 }
 
+std::string everyRobot(const MissionTables& t) {
+  std::string list;
+  for (const RobotTable& r : t.robots) list += std::string(list.empty() ? "" : ", ") + "&semo_mission::" + robotFunction(r) + "()";
+  return list;
+}
+
 std::string robotMain(const MissionTables& t, const RobotTable& r, const std::string& header) {
-  return header + "// The program of robot " + r.name + " (" + r.type + ", team " + t.teams[r.team].name + R"(): its own tables, run by semo_runtime
-// over the transport the command line names (`)" +
-         r.name + R"( --help`).
+  return header + "// The program of robot " + r.name + " (" + r.type + ", team " + t.teams[r.team].name + R"(), run by semo_runtime over the
+// transport the command line names (`)" +
+         r.name + R"( --help`). It runs its own tables; its peers' tables tell it what they are
+// (their plans, what they receive), so that it can follow them from their packets.
 #include "mission.hpp"
 #include "semo/runtime/robot_main.hpp"
 
 int main(int argc, char** argv) {
-  const semo::runtime::MissionTables mission = semo_mission::assemble({&semo_mission::)" +
-         robotFunction(r) + R"(()});
+  const semo::runtime::MissionTables mission = semo_mission::assemble({)" +
+         everyRobot(t) + R"(});
   return semo::runtime::robotMain(mission, ")" +
          r.name + R"(", argc, argv);
 }
@@ -155,8 +162,7 @@ int main(int argc, char** argv) {
 }
 
 std::string simulationSource(const MissionTables& t, const std::string& header) {
-  std::string list;
-  for (const RobotTable& r : t.robots) list += std::string(list.empty() ? "" : ", ") + "&semo_mission::" + robotFunction(r) + "()";
+  const std::string list = everyRobot(t);
   return header + R"(// Every robot's tables in one module, which `semo-verify simulate --generated` loads and runs
 // (checking every step against the verified model).
 #include "mission.hpp"
@@ -174,10 +180,10 @@ extern "C" unsigned long long semo_generated_layout() { return semo::runtime::kT
 
 std::string cmakeLists(const MissionTables& t, const std::string& name, const std::string& header) {
   std::string robots, tables;
+  for (const RobotTable& r : t.robots) tables += " robots/" + r.name + "/tables.cpp";
   for (const RobotTable& r : t.robots) {
-    robots += "add_executable(" + r.name + " robots/" + r.name + "/main.cpp robots/" + r.name + "/tables.cpp)\n";
+    robots += "add_executable(" + r.name + " robots/" + r.name + "/main.cpp)\n";
     robots += "target_link_libraries(" + r.name + " PRIVATE mission_tables semo::runtime)\n";
-    tables += " robots/" + r.name + "/tables.cpp";
   }
   return header + R"(cmake_minimum_required(VERSION 3.20)
 project(semo_mission_)" +
@@ -191,12 +197,12 @@ set(CMAKE_CXX_EXTENSIONS OFF)
 #   cmake -S . -B build -Dsemo_runtime_DIR=SEMO/build/runtime
 find_package(semo_runtime REQUIRED)
 
-# The shared tables of the mission, and how a program's tables are put together.
-add_library(mission_tables STATIC mission/mission_tables.cpp mission/assemble.cpp)
+# The mission's tables: the shared ones and every robot's.
+add_library(mission_tables STATIC mission/mission_tables.cpp mission/assemble.cpp)" + tables + R"()
 target_include_directories(mission_tables PUBLIC mission)
 target_link_libraries(mission_tables PUBLIC semo::runtime_tables)
 
-# One program per robot: its own tables and semo_runtime.
+# One program per robot.
 )" + robots + R"(
 # Every robot's tables in one module, for `semo-verify simulate --generated build`.
 add_library(mission_simulation MODULE mission/simulation.cpp mission/mission_tables.cpp mission/assemble.cpp)" +
@@ -204,6 +210,11 @@ add_library(mission_simulation MODULE mission/simulation.cpp mission/mission_tab
 target_include_directories(mission_simulation PRIVATE mission)
 target_link_libraries(mission_simulation PRIVATE semo::runtime_tables)
 set_target_properties(mission_simulation PROPERTIES PREFIX "")
+
+# Your own tasks, replacing the simulated ones (semo::runtime::TaskLibrary::registry()): a file
+# user_tasks.cmake of yours next to this one, e.g. `target_sources(ROBOT PRIVATE my_tasks.cpp)`.
+# emit leaves it alone when it writes this folder again.
+include(${CMAKE_CURRENT_SOURCE_DIR}/user_tasks.cmake OPTIONAL)
 )";
 }
 

@@ -42,6 +42,19 @@ int KnowledgeStore::merge(const KnowledgeStore& from, std::uint64_t& lamportCloc
   return added;
 }
 
+bool KnowledgeStore::mergeFact(std::uint32_t fact, FactStamp stamp, std::uint64_t& lamportClock) {
+  if (fact >= held_.size()) return false;
+  lamportClock = std::max(lamportClock, stamp.lamport);
+  if (held_[fact] == 0) {
+    held_[fact] = 1;
+    stamps_[fact] = stamp;
+    ++count_;
+    return true;
+  }
+  if (merge_ == Merge::Newest ? stamps_[fact] < stamp : stamp < stamps_[fact]) stamps_[fact] = stamp;
+  return false;
+}
+
 void KnowledgeStore::clear() {
   std::fill(held_.begin(), held_.end(), std::uint8_t{0});
   std::fill(stamps_.begin(), stamps_.end(), FactStamp{});

@@ -14,7 +14,7 @@ namespace semo::runtime {
 namespace detail {
 
 Team::Team(const MissionTables& tables, const World& world, const TaskLibrary& library, const SimulationOptions& options,
-           StepObserver* observer, SimTrace& trace)
+           StepObserver* observer, SimTrace& trace, const NodeLink* node)
     : t_(tables),
       world_(world),
       library_(library),
@@ -22,8 +22,12 @@ Team::Team(const MissionTables& tables, const World& world, const TaskLibrary& l
       observer_(observer),
       trace_(trace),
       latency_(RandomStream::derive(options.seed, "latency", 0)),
-      lossDraws_(RandomStream::derive(options.seed, "loss", 0)) {
+      lossDraws_(RandomStream::derive(options.seed, "loss", 0)),
+      node_(node) {
   const std::size_t n = tables.robots.size();
+  lastHeard_.assign(n, 0);
+  heard_.assign(tables.leaderBlocks.size(), 0);
+  heardPreferred_.assign(tables.leaderBlocks.size(), 0);
   robots_.resize(n);
   aliveFlags_.assign(n, true);
   crashTime_.assign(n, -1);
@@ -81,31 +85,63 @@ void Team::schedule(Micros t, QueuedEvent::Kind kind, Id a, Id b, std::uint64_t 
 }
 
 void Team::run() {
+  start();
+  processUntil(toMicros(options_.duration));
+  finish();
+}
+
+void Team::start() {
   for (Id robot = 0; robot < robots_.size(); ++robot) {
     const TeamTable& team = t_.teams[t_.robots[robot].team];
-    for (Id p = 0; p < robots_[robot].plans.size(); ++p) startPlan(robot, p, team.modes[robots_[robot].mode].entry[p]);
+    for (Id p = 0; p < robots_[robot].plans.size(); ++p) {
+      // A networked robot's peers are replicas: where they are comes from their Status packets.
+      if (local(robot)) startPlan(robot, p, team.modes[robots_[robot].mode].entry[p]);
+      else robots_[robot].plans[p].pc = team.modes[robots_[robot].mode].entry[p];
+    }
   }
   startTimers();
   for (Id c = 0; c < options_.crashes.size(); ++c) schedule(toMicros(options_.crashes[c].at), QueuedEvent::Kind::Crash, c);
   abstractState(before_);
-  eventLoop(toMicros(options_.duration));
+  if (node_ != nullptr) sendStatus();
+}
+
+bool Team::advanceTo(Micros t) {
+  processUntil(t);
+  if (node_ != nullptr && !over()) {
+    // Time passes even without an event; what reached the robot meanwhile is taken now.
+    now_ = std::max(now_, t);
+    pollNetwork();
+    processUntil(t);
+  }
+  return !over();
+}
+
+void Team::finish() {
+  for (std::size_t r = 0; r < bodies_.size(); ++r) {
+    if (local(static_cast<Id>(r))) bodies_[r].advanceTo(now());
+  }
+  samplePoses();
+  trace_.duration = now();
 }
 
 // The periodic events from now on: heartbeat periods, gossip rounds, control periods, pose samples.
 void Team::startTimers() {
   for (Id lb = 0; lb < t_.leaderBlocks.size(); ++lb) {
-    if (t_.leaderBlocks[lb].detectsFailures) schedule(now_ + toMicros(t_.leaderBlocks[lb].heartbeat), QueuedEvent::Kind::Heartbeat, lb);
+    const std::vector<Id>& c = t_.leaderBlocks[lb].candidates;
+    const bool mine = node_ == nullptr || std::find(c.begin(), c.end(), node_->self) != c.end();
+    if (t_.leaderBlocks[lb].detectsFailures && mine) schedule(now_ + toMicros(t_.leaderBlocks[lb].heartbeat), QueuedEvent::Kind::Heartbeat, lb);
   }
   for (Id k = 0; k < t_.knowledge.size(); ++k) {
-    if (t_.knowledge[k].shared) schedule(now_ + toMicros(t_.knowledge[k].period), QueuedEvent::Kind::Gossip, k);
+    const bool mine = node_ == nullptr || t_.knowledge[k].team == t_.robots[node_->self].team;
+    if (t_.knowledge[k].shared && mine) schedule(now_ + toMicros(t_.knowledge[k].period), QueuedEvent::Kind::Gossip, k);
   }
   schedule(now_, QueuedEvent::Kind::Control);
   schedule(now_, QueuedEvent::Kind::Sample);
+  if (node_ != nullptr) schedule(now_ + node_->statusPeriod, QueuedEvent::Kind::Status);
 }
 
-void Team::eventLoop(Micros end) {
-  bool reached = false;
-  while (!queue_.empty() && !stopped_) {
+void Team::processUntil(Micros end) {
+  while (!queue_.empty() && !over()) {
     QueuedEvent e = queue_.top();
     if (e.t > end) break;
     queue_.pop();
@@ -118,8 +154,14 @@ void Team::eventLoop(Micros end) {
         break;
       case QueuedEvent::Kind::DeliverEvent: deliverEvent(e.a, e.b); break;
       case QueuedEvent::Kind::DeliverMessage: deliverMessage(e.a, e.b); break;
-      case QueuedEvent::Kind::Heartbeat: heartbeatPeriod(e.a); break;
-      case QueuedEvent::Kind::Gossip: gossip(e.a); break;
+      case QueuedEvent::Kind::Heartbeat:
+        if (node_ != nullptr) nodeHeartbeat(e.a);
+        else heartbeatPeriod(e.a);
+        break;
+      case QueuedEvent::Kind::Gossip:
+        if (node_ != nullptr) nodeGossip(e.a);
+        else gossip(e.a);
+        break;
       case QueuedEvent::Kind::Crash: crashPlanned(e.a); break;
       case QueuedEvent::Kind::Control:
         stepBehaviours();
@@ -129,22 +171,19 @@ void Team::eventLoop(Micros end) {
         samplePoses();
         schedule(now_ + toMicros(options_.poseSampling), QueuedEvent::Kind::Sample);
         break;
+      case QueuedEvent::Kind::Status: statusTick(); break;
     }
     while (dirty_ && !stopped_) {
       dirty_ = false;
       retryBlocked();
     }
-    if (!reached && goalReached()) {
-      reached = true;
+    if (!goalSeen_ && goalReached()) {
+      goalSeen_ = true;
       trace_.summary.completed = true;
       trace_.summary.completedAt = now();
       note(kNone, TraceEvent::Kind::Note, "the mission's goal is reached");
-      if (options_.stopAtGoal) break;
     }
   }
-  for (Body& b : bodies_) b.advanceTo(now());
-  samplePoses();
-  trace_.duration = now();
 }
 
 void Team::crashPlanned(Id c) {
@@ -168,6 +207,7 @@ void Team::crashPlanned(Id c) {
     }
     if (target == kNone) return;  // checked before the run
   }
+  if (!local(target)) return;  // a networked robot crashes only itself (its peers see it fall silent)
   crash(target, "injected at " + formatSeconds(now_) + " s");
 }
 
@@ -175,6 +215,7 @@ void Team::samplePoses() {
   PoseSample s;
   s.t = now();
   for (std::size_t r = 0; r < bodies_.size(); ++r) {
+    if (!local(static_cast<Id>(r))) continue;  // a peer's pose is the one its last Pose packet gave
     if (robots_[r].alive) bodies_[r].advanceTo(now());
     poses_[r] = bodies_[r].pose();
   }

@@ -390,6 +390,11 @@ TaskLibrary TaskLibrary::standard() {
   return lib;
 }
 
+TaskLibrary& TaskLibrary::registry() {
+  static TaskLibrary library = standard();
+  return library;
+}
+
 void TaskLibrary::add(const std::string& service, Factory factory) { factories_[service] = std::move(factory); }
 
 bool TaskLibrary::has(std::string_view service) const { return factories_.find(service) != factories_.end(); }

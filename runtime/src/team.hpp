@@ -15,6 +15,7 @@
 #include "semo/runtime/random.hpp"
 #include "semo/runtime/replay.hpp"
 #include "semo/runtime/simulator.hpp"
+#include "semo/runtime/transport.hpp"
 #include "team_dataflow.hpp"
 
 namespace semo::runtime::detail {
@@ -44,6 +45,7 @@ struct PlanRun {
   BehaviourContext context;
   bool working = false;            // in a group service with its group started
   Micros busyUntil = 0;
+  Micros restingSince = 0;         // when it came to rest at pc
 };
 
 struct RobotRun {
@@ -62,7 +64,7 @@ struct RobotRun {
 };
 
 struct QueuedEvent {
-  enum class Kind : std::uint8_t { Wake, DeliverEvent, DeliverMessage, Heartbeat, Gossip, Crash, Control, Sample };
+  enum class Kind : std::uint8_t { Wake, DeliverEvent, DeliverMessage, Heartbeat, Gossip, Crash, Control, Sample, Status };
   Micros t = 0;
   std::uint64_t seq = 0;
   Kind kind = Kind::Wake;
@@ -74,11 +76,36 @@ struct QueuedEvent {
 // A trace with the run's header filled in (mission tables, world, seed, faults) and no events yet.
 SimTrace emptyTrace(const MissionTables& tables, const World& world, const SimulationOptions& options);
 
+// A networked robot (robot_node.hpp): this process runs robot `self` only; every other robot of the
+// Team is a replica, kept from its Status and Pose packets, and what the simulator does to another
+// robot directly (an event's slot, a publish's message, an election) goes out as a packet instead
+// (team_node.cpp, specs/runtime.md "Networked robots").
+struct NodeLink {
+  Id self = kNone;
+  Transport* transport = nullptr;
+  Micros statusPeriod = 100'000;  // a Status broadcast at least this often (and after every step)
+  Micros peerTimeout = 3'000'000;  // a peer silent this long is taken as crashed
+  // A candidate at a leader block's formation point elects only after resting there this long, so
+  // that the candidates arriving together know of each other (their Status packets) and elect the
+  // same leader.
+  Micros electionWindow = 300'000;
+};
+
 class Team {
  public:
   Team(const MissionTables& tables, const World& world, const TaskLibrary& library, const SimulationOptions& options,
-       StepObserver* observer, SimTrace& trace);
+       StepObserver* observer, SimTrace& trace, const NodeLink* node = nullptr);
   void run();
+  // run() in parts, for a networked robot driven by a clock: start, then advance to one time after
+  // another (false once the run is over: stopped, or the goal reached with stopAtGoal), then finish.
+  void start();
+  bool advanceTo(Micros t);
+  void finish();
+  [[nodiscard]] Micros nextEventTime() const { return queue_.empty() ? INT64_MAX : queue_.top().t; }
+  [[nodiscard]] Micros time() const { return now_; }
+  [[nodiscard]] const RobotRun& robot(Id r) const { return robots_[r]; }
+  [[nodiscard]] const Pose& pose(Id r) const { return poses_[r]; }
+  [[nodiscard]] bool over() const { return stopped_ || (goalSeen_ && options_.stopAtGoal); }
   // Replay (replay.hpp): takes exactly `rules`, then runs freely for `settle` seconds.
   void runScript(const std::vector<Id>& rules, const ReplayOptions& options);
 
@@ -96,6 +123,7 @@ class Team {
   bool groupStarted(Id robot, Id plan, Id pcSet) const;
   Id electedLeader(Id leaderBlock) const;  // the candidate the election picks now (kNone: none)
   bool noLeader(Id leaderBlock) const;
+  bool settledForElection(Id robot, Id leaderBlock) const;
   void startCall(Id robot, Id plan, Id call);
   void stepBehaviours();
   void retryBlocked();
@@ -142,9 +170,22 @@ class Team {
   std::string forceStep(Id rule, const RuleSite& site);
   std::string forceRow(Id robot, Id plan, Id row);
 
+  // ---- team_node.cpp: a networked robot
+  [[nodiscard]] bool local(Id robot) const { return node_ == nullptr || robot == node_->self; }
+  void emit(Id to, Packet p);
+  void emitToTeam(Id team, Packet p);  // every other robot of the team
+  void emitToAll(Packet p);            // every other robot of the mission
+  void pollNetwork();
+  void onPacket(const Packet& p);
+  void sendStatus();
+  void statusTick();
+  void nodeHeartbeat(Id leaderBlock);
+  void nodeGossip(Id knowledge);
+  void nodeElect(Id leaderBlock);
+
   // ---- simulator.cpp
   void startTimers();
-  void eventLoop(Micros end);
+  void processUntil(Micros end);
   void schedule(Micros t, QueuedEvent::Kind kind, Id a = 0, Id b = 0, std::uint64_t generation = 0);
   void note(Id robot, TraceEvent::Kind kind, std::string label, std::string detail = {}, Id peer = kNone);
   void samplePoses();
@@ -187,6 +228,13 @@ class Team {
   int forcedLoss_ = -1;  // -1: the loss model decides; 0: delivered; 1: lost
   static constexpr std::uint64_t kNoForcedMask = ~std::uint64_t{0};
   std::uint64_t forcedHeartbeatLoss_ = kNoForcedMask;  // bit i: the heartbeat to candidate i is lost
+
+  // Networked robot (team_node.cpp).
+  const NodeLink* node_ = nullptr;
+  std::vector<Micros> lastHeard_;              // per robot: when its last packet came
+  std::vector<std::uint8_t> heard_, heardPreferred_;  // per leader block, since the last period: a heartbeat, one of a preferred leader
+  std::uint64_t sequence_ = 0;
+  bool goalSeen_ = false;
 
   // ---- team_dataflow.cpp: each robot's static schedules, once per control period
   void stepDataflow();

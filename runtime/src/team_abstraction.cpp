@@ -52,7 +52,10 @@ void Team::beginStep() { abstractState(before_); }
 
 void Team::step(Id robot, std::vector<Id> rules, std::string what, std::string origin) {
   abstractState(after_);
-  for (Id k = 0; k < t_.knowledge.size(); ++k) convergence(k);
+  // Convergence needs every robot's facts: a networked robot has only its own.
+  if (node_ == nullptr) {
+    for (Id k = 0; k < t_.knowledge.size(); ++k) convergence(k);
+  }
   lastStep_.assign(rules.begin(), rules.end());
   dirty_ = true;
   TraceEvent e;

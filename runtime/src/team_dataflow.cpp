@@ -80,6 +80,7 @@ void Team::stepDataflow() {
   if (!dataflow_.any) return;
   const Micros period = toMicros(options_.controlPeriod);
   for (Id robot = 0; robot < robots_.size(); ++robot) {
+    if (!local(robot)) continue;  // a networked robot runs its own task graph only
     DataflowRunner& runner = dataflow_.runners[robot];
     const Id s = robots_[robot].alive ? scenarioNow(dataflow_, robot, robots_[robot]) : kNone;
     runner.select(s);

@@ -30,6 +30,14 @@ Micros Team::latency() { return toMicros(0.001 + 0.004 * latency_.uniform()); }
 void Team::throwEvent(Id robot, Id event) {
   const TeamTable& team = t_.teams[t_.robots[robot].team];
   note(robot, TraceEvent::Kind::Send, "throws " + team.events[event].name, team.events[event].name);
+  if (node_ != nullptr) {  // each receiver keeps its own slot (team_node.cpp)
+    for (Id q : team.robots) {
+      if (q == robot || t_.robots[q].eventDeliveryRule[event] == kNone) continue;
+      ++trace_.summary.messagesSent;
+      emit(q, {.kind = Packet::Kind::Event, .index = event, .word = robots_[robot].lamport});
+    }
+    return;
+  }
   for (Id q : team.robots) {
     RobotRun& r = robots_[q];
     if (q == robot || !r.alive || t_.robots[q].eventDeliveryRule[event] == kNone) continue;
@@ -77,6 +85,11 @@ void Team::publish(Id robot, const EffectRow& e) {
     RobotRun& r = robots_[q];
     if (q == robot) {
       if (std::find(topic.subscribers.begin(), topic.subscribers.end(), q) != topic.subscribers.end()) r.view[e.index] = value;
+      continue;
+    }
+    if (node_ != nullptr) {  // the receiver keeps its own message slot (team_node.cpp)
+      ++trace_.summary.messagesSent;
+      emit(q, {.kind = Packet::Kind::Publish, .index = e.index, .value = value});
       continue;
     }
     if (!r.alive) continue;

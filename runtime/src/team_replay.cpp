@@ -189,7 +189,8 @@ void Team::runScript(const std::vector<Id>& rules, const ReplayOptions& options)
   if (!stopped_ && options.settle > 0) {
     note(kNone, TraceEvent::Kind::Note, fmt::format("the counterexample's steps are done: the team runs on freely for {:g} s", options.settle));
     startTimers();
-    eventLoop(now_ + toMicros(options.settle));
+    processUntil(now_ + toMicros(options.settle));
+    finish();
   } else {
     now_ += toMicros(options.pace);  // the picture shows the last state for one more pace
     samplePoses();

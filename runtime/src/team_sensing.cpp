@@ -140,13 +140,14 @@ void Team::startCall(Id robot, Id plan, Id call) {
 // worked in takes one step.
 void Team::stepBehaviours() {
   for (std::size_t r = 0; r < bodies_.size(); ++r) {
+    if (!local(static_cast<Id>(r))) continue;  // a peer's pose is the one its last Pose packet gave
     if (robots_[r].alive) bodies_[r].advanceTo(now());
     poses_[r] = bodies_[r].pose();
   }
   stepDataflow();  // the scenarios of the calls under way run through the period now beginning
   for (Id robot = 0; robot < robots_.size() && !stopped_; ++robot) {
     RobotRun& r = robots_[robot];
-    if (!r.alive) continue;
+    if (!r.alive || !local(robot)) continue;
     const RobotTable& table = t_.robots[robot];
     for (Id plan = 0; plan < r.plans.size() && r.alive; ++plan) {
       PlanRun& p = r.plans[plan];

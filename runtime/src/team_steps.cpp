@@ -14,6 +14,7 @@ void Team::startPlan(Id robot, Id plan, Id pc) {
   const PlanTable& table = t_.robots[robot].plans[plan];
   abandonWalk(robot, plan);
   p.pc = pc;
+  p.restingSince = now_;
   const PlanPoint& point = table.points[pc];
   const bool hasRows = table.firstRow[pc] < table.firstRow[pc + 1];
   if (point.work != kNone) {
@@ -162,7 +163,7 @@ bool Team::guardsHold(Id robot, const Row& row) const {
       case GuardRow::Kind::Elected:
       case GuardRow::Kind::NotElected: {
         const bool elected = r.leads[g.index] != 0 || (noLeader(g.index) && electedLeader(g.index) == robot);
-        holds = elected == (g.kind == GuardRow::Kind::Elected);
+        holds = elected == (g.kind == GuardRow::Kind::Elected) && settledForElection(robot, g.index);
         break;
       }
       case GuardRow::Kind::Goal: {
@@ -186,6 +187,15 @@ bool Team::groupStarted(Id robot, Id plan, Id pcSet) const {
     if (std::binary_search(set.begin(), set.end(), robots_[q].plans[plan].pc)) return false;
   }
   return true;
+}
+
+// A networked robot elects only once its peers arriving at the formation point with it have told it
+// so (NodeLink::electionWindow); the simulator sees them at once.
+bool Team::settledForElection(Id robot, Id lb) const {
+  if (node_ == nullptr) return true;
+  const GroupBlockTable& block = t_.groupBlocks[t_.leaderBlocks[lb].block];
+  const PlanRun& p = robots_[robot].plans[block.plan];
+  return p.pc != block.formPoint || now_ - p.restingSince >= node_->electionWindow;
 }
 
 bool Team::noLeader(Id lb) const {
@@ -216,9 +226,17 @@ void Team::applyEffects(Id robot, Id plan, const Row& row) {
         ++channel_[e.index];
         ++trace_.summary.messagesSent;
         note(robot, TraceEvent::Kind::Send, "sends " + t_.topics[e.index].name, t_.topics[e.index].name);
+        if (node_ != nullptr) emitToAll({.kind = Packet::Kind::ChannelSend, .index = e.index});
         break;
-      case EffectRow::Kind::Receive: --channel_[e.index]; break;
+      case EffectRow::Kind::Receive:
+        --channel_[e.index];
+        if (node_ != nullptr) emitToAll({.kind = Packet::Kind::ChannelReceive, .index = e.index});
+        break;
       case EffectRow::Kind::Elect: {
+        if (node_ != nullptr) {
+          nodeElect(e.index);
+          break;
+        }
         // Decided on the state before the election, as the model's rule is.
         const bool none = noLeader(e.index);
         const Id best = electedLeader(e.index);
@@ -282,12 +300,13 @@ void Team::afterStep(Id robot) {
     step(robot, {rule}, t_.rules[rule].label, t_.rules[rule].origin);
   }
   takeovers(robot);
+  if (node_ != nullptr) sendStatus();  // the peers' group guards and elections read where it is now
 }
 
 void Team::retryBlocked() {
   for (Id robot = 0; robot < robots_.size() && !stopped_; ++robot) {
     RobotRun& r = robots_[robot];
-    if (!r.alive) continue;
+    if (!r.alive || !local(robot)) continue;
     for (Id plan = 0; plan < r.plans.size() && !stopped_; ++plan) {
       if (r.plans[plan].phase == PlanRun::Phase::Blocked) commit(robot, plan);
     }

@@ -30,6 +30,9 @@ std::string_view packetKindName(Packet::Kind kind) {
     case Packet::Kind::LeaderAnnouncement: return "leader announcement";
     case Packet::Kind::KnowledgeDigest: return "knowledge digest";
     case Packet::Kind::KnowledgeFact: return "knowledge fact";
+    case Packet::Kind::Status: return "status";
+    case Packet::Kind::Pose: return "pose";
+    case Packet::Kind::ChannelReceive: return "channel receive";
   }
   return "unknown";
 }

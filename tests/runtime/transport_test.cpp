@@ -154,7 +154,7 @@ TEST(PacketCodec, RefusesEveryMalformedInput) {
     b[4] = static_cast<std::uint8_t>(v);
     refused(b, DecodeError::Version, "version", v);
   }
-  // Every kind byte outside 1..7, and every one inside accepted.
+  // Every kind byte outside 1..10, and every one inside accepted.
   for (int v = 0; v < 256; ++v) {
     PacketBytes b = bytes;
     b[5] = static_cast<std::uint8_t>(v);

@@ -33,6 +33,9 @@ class KnowledgeStore {
   bool discover(std::uint32_t fact, std::uint32_t robot, std::uint64_t& lamportClock);
   // Takes what `from` holds; returns how many facts were new.
   int merge(const KnowledgeStore& from, std::uint64_t& lamportClock);
+  // Takes one fact with its stamp, as a peer's packet carries it (the same rule as merge, fact by
+  // fact); returns whether it was new to this store.
+  bool mergeFact(std::uint32_t fact, FactStamp stamp, std::uint64_t& lamportClock);
 
   [[nodiscard]] int count() const { return count_; }
   [[nodiscard]] bool holds(std::uint32_t fact) const { return fact < held_.size() && held_[fact] != 0; }

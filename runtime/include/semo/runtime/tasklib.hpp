@@ -50,6 +50,11 @@ class TaskLibrary {
   using Factory = std::function<std::unique_ptr<Behaviour>()>;
   // The library of every service of specs/examples.
   static TaskLibrary standard();
+  // The one library a generated robot program runs: the standard one, to which a user's own source
+  // adds or replaces tasks before main runs, e.g. in a file of their own that the generated project
+  // builds in (user_tasks.cmake, specs/certificate.md):
+  //   static const bool mine = (semo::runtime::TaskLibrary::registry().add("move", [] { return ...; }), true);
+  static TaskLibrary& registry();
   void add(const std::string& service, Factory factory);
   [[nodiscard]] bool has(std::string_view service) const;
   // A new behaviour for `service` (a fixed short pause for a service the library does not know).

@@ -1,12 +1,13 @@
 #pragma once
 // How a robot program exchanges messages with its team (specs/runtime.md, "Transports"): fixed-size
 // packets behind one small interface. The in-process transport (every robot of a team in one
-// process, seeded per-link loss, crashes) is the default; UDP on loopback and Cyclone DDS, for one
-// process per robot, are to come behind the same interface, and put a Packet on the wire with
-// encodePacket / decodePacket.
+// process, seeded per-link loss, crashes) is the default; UDP (udp_transport.hpp) and Cyclone DDS
+// (dds_transport.hpp), for one process per robot, put a Packet on the wire with encodePacket /
+// decodePacket.
 //
 // The simulator's own network (team_network.cpp) does not go through a Transport: it is the exact
-// mirror of the IR's message slots (specs/runtime.md, section 3).
+// mirror of the IR's message slots (specs/runtime.md, section 3). Networked robots (robot_node.hpp)
+// do.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -32,7 +33,14 @@ namespace semo::runtime {
 //   KnowledgeDigest     knowledge item      first fact of the window (a multiple of 64)
 //                                                                   0              bit i: fact value + i held
 //   KnowledgeFact       knowledge item      the fact                robot of the stamp   Lamport clock of the stamp
+//   Status              plan                its program counter     the sender's mode    bit b: it leads leader block b
+//   Pose                0                   x, micrometres          y, micrometres (two's complement)
+//                                                                                  the heading's double, bit for bit
+//   ChannelReceive      topic (a channel)   0                       0              0
 //
+// Status and Pose carry a networked robot's state to its peers (specs/runtime.md, "Networked
+// robots"): what their group guards and elections read; ChannelSend and ChannelReceive keep every
+// robot's count of a reliable channel.
 // `sequence` is the sender's own count of what it sent, carried unchanged, for a receiver to tell
 // gaps and duplicates. A field a kind does not use is 0 (transports carry it unchanged anyway).
 struct Packet {
@@ -44,8 +52,11 @@ struct Packet {
     LeaderAnnouncement = 5,
     KnowledgeDigest = 6,
     KnowledgeFact = 7,
+    Status = 8,
+    Pose = 9,
+    ChannelReceive = 10,
   };
-  static constexpr std::uint8_t kLastKind = 7;
+  static constexpr std::uint8_t kLastKind = 10;
 
   Kind kind = Kind::Event;
   std::uint32_t sender = 0;  // robot id
@@ -66,7 +77,7 @@ static_assert(std::is_trivially_copyable_v<Packet> && std::is_standard_layout_v<
 //   offset  size  field
 //        0     4  magic "SEMO" (0x53 0x45 0x4d 0x4f)
 //        4     1  version (1)
-//        5     1  kind (1..7)
+//        5     1  kind (1..10)
 //        6     2  reserved, 0
 //        8     4  sender     (little-endian, as every field below)
 //       12     4  index
@@ -84,7 +95,7 @@ enum class DecodeError : std::uint8_t {
   Length,    // not exactly kPacketBytes bytes
   Magic,     // not "SEMO"
   Version,   // another version of the layout
-  Kind,      // a kind byte outside 1..7
+  Kind,      // a kind byte outside 1..10
   Reserved,  // the reserved bytes are not 0
   Window,    // a KnowledgeDigest whose first fact is not a multiple of 64
 };

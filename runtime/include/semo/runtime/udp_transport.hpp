@@ -1,0 +1,53 @@
+#pragma once
+// UDP as a Transport (specs/runtime.md, "Transports"): one socket per robot program, bound to its
+// own endpoint; a packet to a robot is one datagram (encodePacket's 40 bytes) to that robot's
+// endpoint, and multicast is one datagram per member (unicast fan-out: it works on loopback, where
+// IP multicast often does not, and on any LAN). Best effort, as UDP is: a lost datagram is lost;
+// what the protocol above needs again, it sends again (Status every period, gossip every round).
+// Receiving never blocks; malformed datagrams are counted and dropped. Sending and polling
+// allocate nothing.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "semo/runtime/transport.hpp"
+
+namespace semo::runtime {
+
+struct UdpEndpoint {
+  std::string host = "127.0.0.1";  // a dotted IPv4 address
+  std::uint16_t port = 0;
+};
+
+class UdpTransport final : public Transport {
+ public:
+  // `endpoints[r]` is robot r's; this program binds endpoints[self].
+  UdpTransport(std::uint32_t self, std::vector<UdpEndpoint> endpoints);
+  ~UdpTransport() override;
+  UdpTransport(const UdpTransport&) = delete;
+  UdpTransport& operator=(const UdpTransport&) = delete;
+
+  // Opens and binds the socket; false with `error` set (an address in use, a host that is not an
+  // IPv4 address).
+  bool open(std::string& error);
+
+  void send(std::uint32_t to, const Packet& packet) override;
+  bool poll(std::uint32_t self, Packet& packet) override;
+  [[nodiscard]] TransportCounters counters() const override { return counters_; }
+  [[nodiscard]] std::uint64_t malformed() const { return malformed_; }
+
+ private:
+  std::uint32_t self_;
+  std::vector<UdpEndpoint> endpoints_;
+  std::vector<std::array<std::uint8_t, 16>> addresses_;  // sockaddr_in per robot, resolved once
+  int socket_ = -1;
+  TransportCounters counters_;
+  std::uint64_t malformed_ = 0;
+};
+
+// "host:port" -> an endpoint (nullopt when it is not an IPv4 address and a port).
+std::optional<UdpEndpoint> parseUdpEndpoint(const std::string& text);
+
+}  // namespace semo::runtime

@@ -1,0 +1,127 @@
+// Networked robots (runtime/robot_node.hpp): one RobotNode per robot over one InProcessTransport,
+// driven in simulated time, millisecond by millisecond, so that the runs are deterministic. The
+// paper's two experiments must come out as in the simulator: the swarm stops before the ditch, and
+// the scouting team replaces its crashed leader and completes.
+#include <gtest/gtest.h>
+
+#include "mission_fixture.hpp"
+
+#include "semo/runtime/robot_node.hpp"
+
+namespace semo {
+namespace {
+
+struct Team {
+  std::unique_ptr<test::LoadedMission> mission;
+  std::unique_ptr<runtime::InProcessTransport> transport;
+  std::vector<std::unique_ptr<runtime::RobotNode>> nodes;
+  std::vector<runtime::SimTrace> traces;
+};
+
+// Runs every robot of an example as a node, to `seconds` (or until every node sees the goal).
+Team runNodes(const std::string& dir, const std::string& stem, runtime::NodeOptions options, double seconds, std::uint64_t seed = 1,
+              const std::string& strategy = "strategy.xml") {
+  Team t;
+  t.mission = test::loadExample(dir, stem, strategy);
+  EXPECT_TRUE(t.mission && t.mission->world);
+  const runtime::MissionTables& tables = t.mission->tables;
+  runtime::InProcessTransport::Options to;
+  to.robots = static_cast<std::uint32_t>(tables.robots.size());
+  to.queueCapacity = 4096;
+  to.seed = seed;
+  t.transport = std::make_unique<runtime::InProcessTransport>(to);
+  options.simulation.seed = seed;
+  options.simulation.duration = seconds;
+  static const runtime::TaskLibrary library = runtime::TaskLibrary::standard();
+  for (runtime::Id r = 0; r < tables.robots.size(); ++r) {
+    t.nodes.push_back(std::make_unique<runtime::RobotNode>(tables, r, *t.mission->world, library, *t.transport, options));
+  }
+  for (auto& n : t.nodes) n->start();
+  std::vector<bool> running(t.nodes.size(), true);
+  for (std::int64_t micros = 0; micros <= static_cast<std::int64_t>(seconds * 1e6); micros += 1000) {
+    bool any = false;
+    for (std::size_t i = 0; i < t.nodes.size(); ++i) {
+      if (running[i]) running[i] = t.nodes[i]->advanceTo(micros);
+      any = any || running[i];
+    }
+    if (!any) break;
+  }
+  for (auto& n : t.nodes) t.traces.push_back(n->finish());
+  return t;
+}
+
+// A node's trace in lines (for a failure's message): its own steps, roles, crashes and deliveries.
+std::string lines(const runtime::MissionTables& tables, const runtime::SimTrace& trace) {
+  std::string out;
+  for (const runtime::TraceEvent& e : trace.events) {
+    if (e.kind == runtime::TraceEvent::Kind::Step && e.label.find("continues") != std::string::npos) continue;
+    out += std::to_string(e.t) + " " + runtime::eventKindName(e.kind) + " " +
+           (e.robot == runtime::kNoRobot ? std::string("-") : tables.robots[e.robot].name) + " " + e.label + "\n";
+  }
+  return out;
+}
+
+runtime::Id robotIndex(const runtime::MissionTables& t, const std::string& name) {
+  for (runtime::Id r = 0; r < t.robots.size(); ++r) {
+    if (t.robots[r].name == name) return r;
+  }
+  return runtime::kNone;
+}
+
+TEST(RobotNode, TheSwarmStopsBeforeTheDitchOverTheNetwork) {
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    runtime::NodeOptions options;
+    options.simulation.loss = 0.2;
+    Team t = runNodes("swarm", "swarm3", options, 60, seed);
+    const runtime::MissionTables& tables = t.mission->tables;
+    const runtime::Id retreat = 1;  // RETREAT_MODE
+    ASSERT_EQ(tables.teams[0].modes[retreat].name, "RETREAT_MODE");
+    for (std::size_t i = 0; i < t.nodes.size(); ++i) {
+      SCOPED_TRACE(tables.robots[i].name);
+      EXPECT_TRUE(t.traces[i].summary.completed) << "every node sees the goal reached";
+      EXPECT_EQ(t.nodes[i]->mode(static_cast<runtime::Id>(i)), retreat);
+      double eastmost = -1e9;
+      for (const runtime::PoseSample& s : t.traces[i].poses) eastmost = std::max(eastmost, s.poses[i].x);
+      EXPECT_LT(eastmost, 4.0 - 0.3) << "the ditch starts at x = 4";
+      EXPECT_GT(eastmost, 2.5) << "it did march";
+    }
+    EXPECT_GT(t.transport->counters().delivered, 100u);
+  }
+}
+
+TEST(RobotNode, WithoutSharingARobotReachesTheDitch) {
+  Team t = runNodes("swarm", "swarm3", {}, 60, 1, "strategy_no_sharing.xml");
+  int atTheDitch = 0;
+  for (runtime::Id r = 0; r < t.nodes.size(); ++r) atTheDitch += t.nodes[r]->pose(r).x > 4.0 - 0.12 ? 1 : 0;
+  EXPECT_GE(atTheDitch, 1);
+}
+
+// The first leader (bully: the higher index, ev3_1) crashes at 3 s, while ev3_0 waits in the block's
+// `others` arm (wait(5 SEC), from 1.9 s): its heartbeats stop, ev3_0 counts four silent periods and
+// takes over. (A crash after ev3_0 has left the arm, at 5 s, leaves the block leaderless until it
+// forms again, which the model allows too: each robot's heartbeat period runs on its own clock here,
+// one period behind the simulator's team-wide one at worst.)
+TEST(RobotNode, ScoutingReplacesItsCrashedLeaderOverTheNetwork) {
+  runtime::NodeOptions options;
+  options.simulation.crashes.push_back({"ev3_1", 3.0});
+  Team t = runNodes("scouting", "scouting", options, 60);
+  const runtime::MissionTables& tables = t.mission->tables;
+  const runtime::Id ev3_0 = robotIndex(tables, "ev3_0"), ev3_1 = robotIndex(tables, "ev3_1");
+  ASSERT_NE(ev3_0, runtime::kNone);
+  const runtime::SimTrace& trace = t.traces[ev3_0];
+  // ev3_0 sees ev3_1 elected, then takes over after the failure timeout.
+  ASSERT_GE(trace.summary.leaderChanges.size(), 2u) << lines(tables, trace);
+  EXPECT_EQ(trace.summary.leaderChanges.front().to, ev3_1);
+  const runtime::LeaderChange& takeover = trace.summary.leaderChanges.back();
+  EXPECT_EQ(takeover.to, ev3_0);
+  EXPECT_GE(takeover.t, 3.0);
+  EXPECT_LE(takeover.t, 3.0 + 2.0 + 0.5 + 0.01) << "timeout 2 s + one heartbeat period";
+  for (std::size_t i = 0; i < t.nodes.size(); ++i) {
+    if (i == ev3_1) continue;
+    EXPECT_TRUE(t.traces[i].summary.completed) << tables.robots[i].name;
+  }
+}
+
+}  // namespace
+}  // namespace semo
