@@ -80,12 +80,84 @@ TEST(EmitSwarm3, CertifiedBuildsAndEveryRobotStopsOnTheGeneratedTables) {
   EXPECT_NE(run.out.find("mission completed: 20 of 20"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("0 runs where a robot reached one"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("conformance: 0 runs with a mismatch"), std::string::npos) << run.out;
+  // The same experiment with one process per robot over a real network (its own tests below).
   // Emitting again replaces the tree and keeps the build folder (its cache stays valid).
   CliRun again = verify("emit " + kSwarm3 + " --out '" + out.string() + "'", dir);
   ASSERT_EQ(again.exit, 0) << again.out << again.err;
   EXPECT_TRUE(fs::exists(out / "build" / "CMakeCache.txt"));
   CliRun c = verify("certify '" + out.string() + "'", dir);
   EXPECT_EQ(c.exit, 0) << c.out << c.err;
+}
+
+// The swarm experiment with each robot its own program, as deployed: three processes of the generated
+// project talk over `transport` on loopback, bounded in time; each writes its trace, and every robot
+// must turn back before the ditch, as in the simulator (turn at ~17.4 s, goal at ~30.6 s).
+void swarmOverTheNetwork(const std::string& name, const std::string& transport, int portBase) {
+  const fs::path dir = workDir(name);
+  const fs::path out = dir / "gen";
+  CliRun e = verify("emit " + kSwarm3 + " --out '" + out.string() + "'", dir);
+  ASSERT_EQ(e.exit, 0) << e.out << e.err;
+  build(out);
+  const std::string world = std::string(SEMO_SOURCE_DIR) + "/specs/examples/swarm/swarm3.world.json";
+  std::string command = "cd '" + (out / "build").string() + "' && (";
+  for (const char* robot : {"legged_0", "legged_1", "legged_2"}) {
+    command += "timeout 120 ./" + std::string(robot) + " --transport " + transport + " --world '" + world +
+               "' --duration 50s --loss 0.2 --trace '" + (dir / (std::string(robot) + ".json")).string() + "' " +
+               (transport == "udp" ? "--port-base " + std::to_string(portBase) : "--dds-interface 127.0.0.1 --domain " + std::to_string(portBase % 200)) +
+               " > '" + (dir / (std::string(robot) + ".out")).string() + "' 2>&1 & ";
+  }
+  command += "wait)";
+  ASSERT_EQ(shell(command, dir / "run.log"), 0) << slurp(dir / "run.log");
+  for (const char* robot : {"legged_0", "legged_1", "legged_2"}) {
+    SCOPED_TRACE(robot);
+    const std::string said = slurp(dir / (std::string(robot) + ".out"));
+    EXPECT_NE(said.find("mode RETREAT_MODE, the mission's goal reached"), std::string::npos) << said;
+    const nlohmann::json trace = nlohmann::json::parse(slurp(dir / (std::string(robot) + ".json")));
+    std::size_t self = 0;
+    while (self < trace["robots"].size() && trace["robots"][self]["name"] != robot) ++self;
+    ASSERT_LT(self, trace["robots"].size());
+    double eastmost = -1e9, turned = -1;
+    for (const auto& sample : trace["poses"]) eastmost = std::max(eastmost, sample["robots"][self][0].get<double>());
+    for (const auto& ev : trace["events"]) {
+      if (ev["kind"] == "mode" && ev["robot"] == robot && ev["label"] == "RETREAT_MODE") turned = ev["t"].get<double>();
+    }
+    EXPECT_LT(eastmost, 4.0 - 0.3) << "the ditch starts at x = 4";
+    EXPECT_GT(eastmost, 2.5) << "it did march";
+    EXPECT_GT(turned, 15.0);
+    EXPECT_LT(turned, 20.0);
+    EXPECT_TRUE(trace["summary"]["completed"].get<bool>());
+  }
+}
+
+TEST(EmitSwarm3, OneProcessPerRobotOverUdp) { swarmOverTheNetwork("swarm3_udp", "udp", 47310); }
+
+TEST(EmitSwarm3, OneProcessPerRobotOverCycloneDds) {
+  if (!SEMO_WITH_DDS_E2E) GTEST_SKIP() << "semo_runtime was built without Cyclone DDS";
+  swarmOverTheNetwork("swarm3_dds", "dds", 47);
+}
+
+TEST(EmitSwarm3, TheRobotProgramsCommandLine) {
+  const fs::path dir = workDir("swarm3_cli");
+  const fs::path out = dir / "gen";
+  ASSERT_EQ(verify("emit " + kSwarm3 + " --out '" + out.string() + "'", dir).exit, 0);
+  build(out);
+  const std::string robot = "'" + (out / "build" / "legged_1").string() + "'";
+  EXPECT_EQ(shell(robot + " --help", dir / "help.log"), 0);
+  EXPECT_NE(slurp(dir / "help.log").find("--transport udp|dds"), std::string::npos) << slurp(dir / "help.log");
+  struct Bad {
+    const char* args;
+    const char* says;
+  };
+  for (const Bad& b : {Bad{"--transport carrier-pigeon", "--transport: expected udp or dds"}, Bad{"--duration soon", "--duration: expected"},
+                       Bad{"--peers legged_9=127.0.0.1:1", "no robot named 'legged_9'"}, Bad{"--peers legged_0=nowhere", "is not NAME=HOST:PORT"},
+                       Bad{"--world /no/such/world.json", "cannot"}, Bad{"--frobnicate", "unknown option '--frobnicate'"}}) {
+    SCOPED_TRACE(b.args);
+    EXPECT_EQ(shell(robot + " " + b.args, dir / "bad.log"), 2);
+    EXPECT_NE(slurp(dir / "bad.log").find(b.says), std::string::npos) << slurp(dir / "bad.log");
+  }
+  // Alone, it crashes on cue and says so.
+  EXPECT_EQ(shell(robot + " --duration 2s --crash-at 500ms --port-base 47330", dir / "crash.log"), 0) << slurp(dir / "crash.log");
+  EXPECT_NE(slurp(dir / "crash.log").find("crashed (--crash-at)"), std::string::npos) << slurp(dir / "crash.log");
 }
 
 // The paper's scouting experiment on the generated code. Its LTL properties are beyond the engines
@@ -236,6 +308,8 @@ struct Defect {
   const char* strategy;
   const char* property;
 };
+
+void PrintTo(const Defect& d, std::ostream* out) { *out << d.mission; }
 
 class EmitDefect : public ::testing::TestWithParam<Defect> {};
 

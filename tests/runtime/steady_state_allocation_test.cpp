@@ -1,8 +1,8 @@
 // The runtime's hot calls allocate nothing once their objects are built and warmed up: 10,000
 // calls each of the random streams, the loss models, knowledge merges, channel pushes and pops,
 // static schedule iterations, a robot's dataflow (scenario switches and the iterations of a
-// control period), and the transport's send, multicast, poll, encode and decode, measured by the
-// test executable's counting operator new.
+// control period), and the transports' send, multicast, poll, encode and decode (in process, and
+// UDP on loopback), measured by the test executable's counting operator new.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -16,6 +16,7 @@
 #include "semo/runtime/loss.hpp"
 #include "semo/runtime/random.hpp"
 #include "semo/runtime/transport.hpp"
+#include "semo/runtime/udp_transport.hpp"
 
 namespace semo::runtime {
 namespace {
@@ -162,6 +163,24 @@ TEST(SteadyState, TransportSendPollAndCodecAllocateNothing) {
   EXPECT_GT(c.droppedFull, 0u);
   EXPECT_GT(c.discarded, 0u);
   EXPECT_NE(sink, 0u);
+}
+
+TEST(SteadyState, UdpSendAndPollAllocateNothing) {
+  std::vector<UdpEndpoint> ends = {{"127.0.0.1", 47650}, {"127.0.0.1", 47651}};
+  UdpTransport a(0, ends), b(1, ends);
+  std::string error;
+  ASSERT_TRUE(a.open(error) && b.open(error)) << error;
+  std::uint64_t received = 0;
+  auto round = [&](std::uint64_t i) {
+    a.send(1, {.kind = Packet::Kind::Status, .sender = 0, .index = 0, .value = static_cast<std::int32_t>(i), .sequence = i});
+    Packet p;
+    while (b.poll(1, p)) ++received;
+  };
+  for (std::uint64_t i = 0; i < 1000; ++i) round(i);
+  AllocationMeter meter;
+  for (std::uint64_t i = 0; i < kCalls; ++i) round(i);
+  EXPECT_EQ(meter.allocations(), 0u);
+  EXPECT_GT(received, 0u);
 }
 
 TEST(SteadyState, DataflowRunnerAllocatesNothing) {
