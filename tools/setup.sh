@@ -67,7 +67,7 @@ case "$mode" in
     build build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DSEMO_FUZZ=ON
     seconds="${FUZZ_SECONDS:-300}"
     targets=(fuzz_mission_parser fuzz_strategy_reader fuzz_ir_reader fuzz_sdf3_reader fuzz_taskgraph_reader
-             fuzz_trace_reader fuzz_world_reader)
+             fuzz_trace_reader fuzz_world_reader fuzz_packet_decode fuzz_tables_reader)
     # Seed corpora: the project's own inputs, and the malformed ones of the diagnostics tests.
     for target in "${targets[@]}"; do mkdir -p "build-fuzz/corpus-$target"; done
     for f in specs/benchmarks/sdf3/*.xml tests/diagnostics/sdf3/*.xml; do
@@ -90,6 +90,12 @@ case "$mode" in
     done
     for f in specs/examples/*/*.world.json tests/diagnostics/world/*.json; do
       cp "$f" "build-fuzz/corpus-fuzz_world_reader/$(echo "$f" | tr / _)"
+    done
+    # Generated tables: emit's own output for the swarm example.
+    ./build-fuzz/tools/semo-verify emit specs/examples/swarm/swarm3.semo -s specs/examples/swarm/strategy.xml \
+      --out build-fuzz/emitted > /dev/null
+    for f in build-fuzz/emitted/mission/mission_tables.cpp build-fuzz/emitted/robots/*/tables.cpp; do
+      cp "$f" "build-fuzz/corpus-fuzz_tables_reader/$(echo "$f" | tr / _)"
     done
     for target in "${targets[@]}"; do
       corpus="build-fuzz/corpus-$target"

@@ -63,7 +63,13 @@ Json propertiesJson(const checker::Report& report) {
               {"proof", checker::proofKindName(p.proof)}};
     if (p.proof == checker::ProofKind::KInduction) j["k"] = p.k;
     if (p.proof == checker::ProofKind::Ic3) j["conjuncts"] = p.conjuncts;
-    j["coverage"] = p.coverage;
+    // The coverage in the words check prints, without its pointer to the lines above (the
+    // assumptions are the model's, in "model").
+    std::string coverage = p.coverage;
+    for (const std::string cut : {", under the assumptions above", " under the assumptions above"}) {
+      if (const std::size_t at = coverage.find(cut); at != std::string::npos) coverage.erase(at, cut.size());
+    }
+    j["coverage"] = coverage;
     j["origin"] = p.origin;
     out.push_back(j);
   }

@@ -138,23 +138,30 @@ const RobotTable& )" +
 )";
 }
 
-std::string everyRobot(const MissionTables& t) {
+// `&semo_mission::robot_a(), ...`, one a line (at `indent`) when there are more than two.
+std::string everyRobot(const MissionTables& t, int indent) {
   std::string list;
-  for (const RobotTable& r : t.robots) list += std::string(list.empty() ? "" : ", ") + "&semo_mission::" + robotFunction(r) + "()";
-  return list;
+  const bool lines = t.robots.size() > 2;
+  for (const RobotTable& r : t.robots) {
+    list += lines ? "\n" + std::string(static_cast<std::size_t>(indent), ' ') : std::string(list.empty() ? "" : " ");
+    list += "&semo_mission::" + robotFunction(r) + "(),";
+  }
+  if (!lines) list.pop_back();
+  return lines ? list + "\n" + std::string(static_cast<std::size_t>(indent) - 4, ' ') : list;
 }
 
 std::string robotMain(const MissionTables& t, const RobotTable& r, const std::string& header) {
-  return header + "// The program of robot " + r.name + " (" + r.type + ", team " + t.teams[r.team].name + R"(), run by semo_runtime over the
-// transport the command line names (`)" +
-         r.name + R"( --help`). It runs its own tables; its peers' tables tell it what they are
-// (their plans, what they receive), so that it can follow them from their packets.
+  return header + "// The program of robot " + r.name + " (" + r.type + ", team " + t.teams[r.team].name + R"(), run by
+// semo_runtime over the transport its command line names (`)" +
+         r.name + R"( --help`). It runs its own tables;
+// its peers' tables tell it what they are (their plans, what they receive), so that it can follow
+// them from their packets.
 #include "mission.hpp"
 #include "semo/runtime/robot_main.hpp"
 
 int main(int argc, char** argv) {
   const semo::runtime::MissionTables mission = semo_mission::assemble({)" +
-         everyRobot(t) + R"(});
+         everyRobot(t, 6) + R"(});
   return semo::runtime::robotMain(mission, ")" +
          r.name + R"(", argc, argv);
 }
@@ -162,7 +169,7 @@ int main(int argc, char** argv) {
 }
 
 std::string simulationSource(const MissionTables& t, const std::string& header) {
-  const std::string list = everyRobot(t);
+  const std::string list = everyRobot(t, 6);
   return header + R"(// Every robot's tables in one module, which `semo-verify simulate --generated` loads and runs
 // (checking every step against the verified model).
 #include "mission.hpp"
