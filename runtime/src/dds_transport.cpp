@@ -30,7 +30,7 @@ bool reliableKind(Packet::Kind k) {
 
 class DdsTransport final : public Transport {
  public:
-  DdsTransport(Id self, std::uint32_t robots) : self_(self), robots_(robots) {}
+  explicit DdsTransport(std::uint32_t robots) : robots_(robots) {}
   ~DdsTransport() override {
     if (participant_ > 0) dds_delete(participant_);
     if (domain_ > 0) dds_delete(domain_);
@@ -104,7 +104,6 @@ class DdsTransport final : public Transport {
     return false;
   }
 
-  Id self_;
   std::uint32_t robots_;
   dds_entity_t domain_ = 0, participant_ = 0;
   dds_entity_t writer_[2] = {0, 0}, reader_[2] = {0, 0};
@@ -114,7 +113,8 @@ class DdsTransport final : public Transport {
 }  // namespace
 
 std::unique_ptr<Transport> makeDdsTransport(const MissionTables& mission, Id self, const DdsOptions& options, std::string& error) {
-  auto t = std::make_unique<DdsTransport>(self, static_cast<std::uint32_t>(mission.robots.size()));
+  (void)self;  // a sample names its receiver; poll is told who it is for
+  auto t = std::make_unique<DdsTransport>(static_cast<std::uint32_t>(mission.robots.size()));
   if (!t->open(mission, options, error)) return nullptr;
   return t;
 }

@@ -172,7 +172,8 @@ int robotMain(const MissionTables& mission, std::string_view robotName, int argc
               << kUsage;
     return self == kNone ? 2 : 0;
   }
-  for (const auto& [peer, endpoint] : a.peers) {
+  for (const auto& given : a.peers) {
+    const std::string& peer = given.first;
     const bool known = std::any_of(mission.robots.begin(), mission.robots.end(), [&](const RobotTable& r) { return r.name == peer; });
     if (!known) {
       std::cerr << name << ": error: --peers: no robot named '" << peer << "' in the mission\n";
