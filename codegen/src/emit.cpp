@@ -204,18 +204,18 @@ set(CMAKE_CXX_EXTENSIONS OFF)
 #   cmake -S . -B build -Dsemo_runtime_DIR=SEMO/build/runtime
 find_package(semo_runtime REQUIRED)
 
-# The mission's tables: the shared ones and every robot's.
-add_library(mission_tables STATIC mission/mission_tables.cpp mission/assemble.cpp)" + tables + R"()
+# The mission's tables, the shared ones and every robot's, compiled once for every program and the
+# simulator's module.
+add_library(mission_tables OBJECT mission/mission_tables.cpp mission/assemble.cpp)" + tables + R"()
+set_target_properties(mission_tables PROPERTIES POSITION_INDEPENDENT_CODE ON)
 target_include_directories(mission_tables PUBLIC mission)
 target_link_libraries(mission_tables PUBLIC semo::runtime_tables)
 
 # One program per robot.
 )" + robots + R"(
 # Every robot's tables in one module, for `semo-verify simulate --generated build`.
-add_library(mission_simulation MODULE mission/simulation.cpp mission/mission_tables.cpp mission/assemble.cpp)" +
-         tables + R"()
-target_include_directories(mission_simulation PRIVATE mission)
-target_link_libraries(mission_simulation PRIVATE semo::runtime_tables)
+add_library(mission_simulation MODULE mission/simulation.cpp)
+target_link_libraries(mission_simulation PRIVATE mission_tables)
 set_target_properties(mission_simulation PROPERTIES PREFIX "")
 
 # Your own tasks, replacing the simulated ones (semo::runtime::TaskLibrary::registry()): a file

@@ -83,6 +83,9 @@ runtime::DataflowTable dataflowTable(const sdf::TaskGraph& graph, const sdf::Tas
     st.notProven = notProvenReason(a);
     out.scenarios.push_back(std::move(st));
   }
+  for (const sdf::RemotePort& r : graph.remotePorts) {
+    out.remotePorts.push_back({static_cast<std::uint32_t>(r.task), r.port, r.output, r.kind == sdf::RemotePort::Kind::Multicast, r.id, r.buffer, r.peers});
+  }
   return out;
 }
 

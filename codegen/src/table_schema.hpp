@@ -125,8 +125,12 @@ template <class V> void describe(V& v, ScenarioTable& x) {
       v.field("periodNum", x.periodNum), v.field("periodDen", x.periodDen), v.field("period", x.period), v.field("proven", x.proven),
       v.field("notProven", x.notProven);
 }
+template <class V> void describe(V& v, RemotePortTable& x) {
+  v.field("task", x.task), v.field("port", x.port), v.field("output", x.output), v.field("multicast", x.multicast),
+      v.field("group", x.group), v.field("buffer", x.buffer), v.field("peers", x.peers);
+}
 template <class V> void describe(V& v, DataflowTable& x) {
-  v.field("tasks", x.tasks), v.field("channels", x.channels), v.field("scenarios", x.scenarios);
+  v.field("tasks", x.tasks), v.field("channels", x.channels), v.field("scenarios", x.scenarios), v.field("remotePorts", x.remotePorts);
 }
 template <class V> void describe(V& v, RobotTable::Discover& x) {
   v.field("knowledge", x.knowledge), v.field("plan", x.plan), v.field("pc", x.pc), v.field("rule", x.rule), v.field("started", x.started);

@@ -32,6 +32,9 @@ constexpr const char* kUsage = R"(options:
                           udp: where each robot of the mission listens (default: 127.0.0.1, port
                           --port-base + the robot's place in the mission)
   --port-base N           udp: the first robot's port (default 47000)
+  --multicast GROUP:PORT  udp: also join this IP multicast group (a LAN: 239.x.y.z), and send what
+                          goes to every other robot as one datagram to it
+  --interface ADDR        udp: the interface for --multicast (default: the system's choice)
   --domain N              dds: the DDS domain (default 0)
   --dds-interface ADDR    dds: use only the network interface of this address, multicast on
                           (127.0.0.1 for a team on one machine; default: Cyclone DDS's choice, or
@@ -71,6 +74,8 @@ struct Arguments {
   int portBase = 47000;
   int domain = 0;
   std::string ddsInterface;
+  std::optional<UdpEndpoint> multicast;
+  std::string interface = "0.0.0.0";
   std::string world, trace;
   double duration = 60, statusPeriod = 0.1, peerTimeout = 3, loss = 0;
   std::optional<double> crashAt;
@@ -119,6 +124,10 @@ std::string parse(int argc, char** argv, Arguments& a) {
       if (!value(v) || v.empty() || v.size() > 5 || v.find_first_not_of("0123456789") != std::string::npos) return arg + ": expected a number";
       (arg == "--port-base" ? a.portBase : a.domain) = std::stoi(v);
       if (a.portBase < 1 || a.portBase > 65000) return "--port-base: expected 1..65000";
+    } else if (arg == "--multicast") {
+      if (!value(v) || !(a.multicast = parseUdpEndpoint(v))) return "--multicast: expected GROUP:PORT, an IPv4 multicast address and a port";
+    } else if (arg == "--interface") {
+      if (!value(a.interface)) return "--interface: expected an address";
     } else if (arg == "--dds-interface") {
       if (!value(a.ddsInterface)) return "--dds-interface: expected an address";
     } else if (arg == "--world") {
@@ -202,7 +211,9 @@ int robotMain(const MissionTables& mission, std::string_view robotName, int argc
       endpoints.push_back(given != a.peers.end() ? *parseUdpEndpoint(given->second)
                                                  : UdpEndpoint{"127.0.0.1", static_cast<std::uint16_t>(a.portBase + static_cast<int>(r))});
     }
-    auto udp = std::make_unique<UdpTransport>(self, std::move(endpoints));
+    std::optional<UdpMulticast> group;
+    if (a.multicast) group = UdpMulticast{*a.multicast, a.interface};
+    auto udp = std::make_unique<UdpTransport>(self, std::move(endpoints), group);
     if (!udp->open(error)) {
       std::cerr << name << ": error: " << error << "\n";
       return 2;

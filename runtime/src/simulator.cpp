@@ -26,6 +26,7 @@ Team::Team(const MissionTables& tables, const World& world, const TaskLibrary& l
       node_(node) {
   const std::size_t n = tables.robots.size();
   lastHeard_.assign(n, 0);
+  for (std::uint32_t r = 0; r < n; ++r) everyone_.push_back(r);
   heard_.assign(tables.leaderBlocks.size(), 0);
   heardPreferred_.assign(tables.leaderBlocks.size(), 0);
   robots_.resize(n);

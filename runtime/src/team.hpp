@@ -234,6 +234,7 @@ class Team {
   std::vector<Micros> lastHeard_;              // per robot: when its last packet came
   std::vector<std::uint8_t> heard_, heardPreferred_;  // per leader block, since the last period: a heartbeat, one of a preferred leader
   std::uint64_t sequence_ = 0;
+  std::vector<std::uint32_t> everyone_;  // every robot of the mission, for a multicast to all
   bool goalSeen_ = false;
 
   // ---- team_dataflow.cpp: each robot's static schedules, once per control period

@@ -40,15 +40,19 @@ void Team::emit(Id to, Packet p) {
 }
 
 void Team::emitToTeam(Id team, Packet p) {
-  for (Id q : t_.teams[team].robots) {
-    if (q != node_->self) emit(q, p);
-  }
+  const Id self = node_->self;
+  if (!robots_[self].alive) return;
+  p.sender = self;
+  p.sequence = ++sequence_;
+  node_->transport->multicast(t_.teams[team].robots, p);
 }
 
 void Team::emitToAll(Packet p) {
-  for (Id q = 0; q < robots_.size(); ++q) {
-    if (q != node_->self) emit(q, p);
-  }
+  const Id self = node_->self;
+  if (!robots_[self].alive) return;
+  p.sender = self;
+  p.sequence = ++sequence_;
+  node_->transport->multicast(everyone_, p);  // one datagram on an IP multicast group
 }
 
 void Team::pollNetwork() {

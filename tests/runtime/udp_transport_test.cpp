@@ -109,5 +109,31 @@ TEST(UdpTransport, ATakenPortOrABadAddressIsAnError) {
   EXPECT_EQ(parseUdpEndpoint("10.0.0.7:5000")->port, 5000);
 }
 
+// An IP multicast group on loopback (a LAN's way): what goes to every other robot is one datagram to
+// the group, which every member receives and the sender does not; to fewer, one datagram each.
+TEST(UdpTransport, AnIpMulticastGroupCarriesWhatGoesToEveryone) {
+  const UdpMulticast group{{"239.255.47.1", 47690}, "127.0.0.1"};
+  UdpTransport t0(0, endpoints(kBase + 40, 3), group), t1(1, endpoints(kBase + 40, 3), group), t2(2, endpoints(kBase + 40, 3), group);
+  std::string error;
+  if (!t0.open(error)) GTEST_SKIP() << "no IP multicast here: " << error;
+  ASSERT_TRUE(t1.open(error) && t2.open(error)) << error;
+  const std::uint32_t everyone[] = {0, 1, 2};
+  t0.multicast(everyone, {.kind = Packet::Kind::Status, .sender = 0, .index = 1, .value = 5});
+  EXPECT_EQ(t0.groupDatagrams(), 1u);
+  EXPECT_EQ(t0.counters().sent, 2u) << "a packet to each of two receivers";
+  EXPECT_EQ(receive(t1, 1, 1).size(), 1u);
+  EXPECT_EQ(receive(t2, 2, 1).size(), 1u);
+  Packet p;
+  EXPECT_FALSE(t0.poll(0, p)) << "its own datagram, looped back, is not a packet for it";
+  const std::uint32_t two[] = {0, 1};
+  t0.multicast(two, {.kind = Packet::Kind::Heartbeat, .sender = 0, .index = 0, .value = 1});
+  EXPECT_EQ(t0.groupDatagrams(), 1u) << "to fewer than everyone: unicast";
+  EXPECT_EQ(receive(t1, 1, 1).size(), 1u);
+  EXPECT_FALSE(t2.poll(2, p));
+  UdpTransport notAGroup(0, endpoints(kBase + 50, 1), UdpMulticast{{"10.1.2.3", 47691}, "127.0.0.1"});
+  EXPECT_FALSE(notAGroup.open(error));
+  EXPECT_NE(error.find("is not an IPv4 multicast address"), std::string::npos) << error;
+}
+
 }  // namespace
 }  // namespace semo::runtime

@@ -68,10 +68,27 @@ struct ScenarioTable {
   friend bool operator==(const ScenarioTable&, const ScenarioTable&) = default;
 };
 
+// A port of a communication task to other robots (specs/taskgraph.md, "Remote ports"): the robot's
+// wiring. A multicast port belongs to a group (a topic's subscribers, a team's events, a knowledge
+// item's workers, a leader block's candidates), a point-to-point port to a reliable channel; an input
+// port has a receive buffer. A transport carries what goes through them: `send`/`multicast` to the
+// peers named here (the networked robot routes by the same tables, specs/runtime.md section 11).
+struct RemotePortTable {
+  std::uint32_t task = 0;     // into DataflowTable::tasks
+  std::string port;
+  bool output = true;         // it sends (else it receives)
+  bool multicast = true;      // else point to point
+  std::string group;          // "topic:SlaveTeam.Message", "events:SlaveTeam", ...
+  std::int64_t buffer = 1;    // the receiving port's buffer (tokens)
+  std::vector<std::string> peers;  // the robots on the other side
+  friend bool operator==(const RemotePortTable&, const RemotePortTable&) = default;
+};
+
 struct DataflowTable {
   std::vector<DataflowTask> tasks;  // the control task first
   std::vector<DataflowChannel> channels;
   std::vector<ScenarioTable> scenarios;
+  std::vector<RemotePortTable> remotePorts;
   friend bool operator==(const DataflowTable&, const DataflowTable&) = default;
 };
 

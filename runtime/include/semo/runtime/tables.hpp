@@ -319,7 +319,7 @@ struct MissionTables {
 // The tables' layout, as a number: compiled into generated code (`semo-verify simulate --generated`
 // loads tables compiled elsewhere only when their layout is its own). It changes with the version
 // below, bumped whenever a table's members change, and with the structs' sizes.
-inline constexpr unsigned long long kTablesVersion = 1;
+inline constexpr unsigned long long kTablesVersion = 2;
 inline constexpr unsigned long long kTablesLayout =
     kTablesVersion * 1000003ull ^ (sizeof(MissionTables) << 8) ^ (sizeof(RobotTable) << 20) ^ (sizeof(Row) << 32) ^
     (sizeof(PlanTable) << 40) ^ (sizeof(DataflowTable) << 48) ^ (sizeof(ScenarioTable) << 56) ^ (sizeof(Operand) << 4);
