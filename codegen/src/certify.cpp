@@ -306,6 +306,19 @@ CertifyReport certify(const std::string& dir, const CertifyOptions& options, Sou
       }
     }
   }
+  // What else is there: the user's own files (a build folder, one holding a CMakeCache.txt, aside).
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    if (it->is_directory(ec) && fs::exists(it->path() / "CMakeCache.txt", ec)) {
+      it.disable_recursion_pending();
+      continue;
+    }
+    if (!it->is_regular_file(ec)) continue;
+    const std::string rel = fs::relative(it->path(), dir, ec).generic_string();
+    if (rel == "certificate.json" || std::any_of(c->files.begin(), c->files.end(), [&](const Certificate::Entry& e) { return e.path == rel; })) continue;
+    report.notCovered.push_back(rel);
+  }
+  std::sort(report.notCovered.begin(), report.notCovered.end());
   report.exitCode = !report.findings.empty() ? 1 : report.certified ? 0 : 3;
   return report;
 }

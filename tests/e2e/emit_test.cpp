@@ -115,6 +115,26 @@ TEST(EmitSwarm3, CertifiedBuildsAndStopsInTheSimulatorAndAsProcesses) {
                         "robots/legged_0/main.cpp", "robots/legged_2/main.cpp"}) {
     EXPECT_TRUE(fs::exists(out / f)) << f;
   }
+  // A task of the user's own, through the one registry: legged_0's marchInLine says so when it
+  // starts, then marches as the simulated one does (so the experiment below is unchanged).
+  std::ofstream(out / "user_tasks.cmake") << "target_sources(legged_0 PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/my_march.cpp)\n";
+  std::ofstream(out / "my_march.cpp") << R"(#include <iostream>
+#include <memory>
+#include "semo/runtime/tasklib.hpp"
+namespace {
+class MyMarch final : public semo::runtime::Behaviour {
+ public:
+  void start(semo::runtime::BehaviourContext& ctx) override {
+    std::cerr << "my own marchInLine starts\n";
+    inner_->start(ctx);
+  }
+  bool step(semo::runtime::BehaviourContext& ctx) override { return inner_->step(ctx); }
+ private:
+  std::unique_ptr<semo::runtime::Behaviour> inner_ = semo::runtime::TaskLibrary::standard().make("marchInLine");
+};
+const bool registered = (semo::runtime::TaskLibrary::registry().add("marchInLine", [] { return std::make_unique<MyMarch>(); }), true);
+}  // namespace
+)";
   build(out);
   const fs::path bin = out / "build";
   for (const char* robot : {"legged_0", "legged_1", "legged_2"}) EXPECT_TRUE(fs::exists(bin / robot)) << robot;
@@ -130,6 +150,8 @@ TEST(EmitSwarm3, CertifiedBuildsAndStopsInTheSimulatorAndAsProcesses) {
   if (SEMO_WITH_DDS_E2E) teams += swarmTeam(bin, dir, "dds", 47);
   ASSERT_EQ(shell(teams + "wait)", dir / "run.log"), 0) << slurp(dir / "run.log");
   expectTheSwarmTurnedBack(dir, "udp");
+  EXPECT_NE(slurp(dir / "udp_legged_0.out").find("my own marchInLine starts"), std::string::npos) << "the user's task ran";
+  EXPECT_EQ(slurp(dir / "udp_legged_1.out").find("my own marchInLine starts"), std::string::npos) << "only where the user put it";
   if (SEMO_WITH_DDS_E2E) expectTheSwarmTurnedBack(dir, "dds");
   else std::cout << "[ NOTE ] semo_runtime was built without Cyclone DDS: no DDS team ran\n";
 
@@ -153,12 +175,15 @@ TEST(EmitSwarm3, CertifiedBuildsAndStopsInTheSimulatorAndAsProcesses) {
   EXPECT_EQ(shell(robot + " --duration 2s --crash-at 500ms --port-base 47330", dir / "crash.log"), 0) << slurp(dir / "crash.log");
   EXPECT_NE(slurp(dir / "crash.log").find("crashed (--crash-at)"), std::string::npos) << slurp(dir / "crash.log");
 
-  // Emitting again replaces the tree and keeps the build folder (its cache stays valid).
+  // Emitting again replaces the tree and keeps the build folder (its cache stays valid) and the
+  // user's own files.
   CliRun again = verify("emit " + kSwarm3 + " --out '" + out.string() + "'", dir);
   ASSERT_EQ(again.exit, 0) << again.out << again.err;
   EXPECT_TRUE(fs::exists(bin / "CMakeCache.txt"));
+  EXPECT_TRUE(fs::exists(out / "user_tasks.cmake") && fs::exists(out / "my_march.cpp"));
   CliRun c = verify("certify '" + out.string() + "'", dir);
   EXPECT_EQ(c.exit, 0) << c.out << c.err;
+  EXPECT_NE(c.out.find("not covered by the certificate (your own files): my_march.cpp user_tasks.cmake"), std::string::npos) << c.out;
 }
 
 // The paper's scouting experiment on the generated code. Its LTL properties are beyond the engines

@@ -37,6 +37,7 @@ int runCertify(const CertifyOptions& options) {
                                 {"rows", report.rows},
                                 {"programRules", report.programRules},
                                 {"findings", findings},
+                                {"notCovered", report.notCovered},
                                 {"exitCode", report.exitCode}}
                      .dump(2)
               << "\n";
@@ -56,6 +57,11 @@ int runCertify(const CertifyOptions& options) {
   std::cout << "certify: " << options.dir << " (" << report.mission << ", model " << report.fingerprint << ")\n";
   std::cout << "  inputs: " << report.inputs << " files; generated: " << report.files << " files; tables of " << report.robots << " robots, "
             << report.rows << " rows for " << report.programRules << " rules of their programs\n";
+  if (!report.notCovered.empty()) {
+    std::cout << "  not covered by the certificate (your own files):";
+    for (const std::string& f : report.notCovered) std::cout << " " << f;
+    std::cout << "\n";
+  }
   if (!report.findings.empty()) {
     std::cout << "  INVALID: " << report.findings.size() << (report.findings.size() == 1 ? " finding" : " findings") << " above\n";
   } else {

@@ -39,6 +39,9 @@ struct CertifyReport {
   std::size_t inputs = 0, files = 0, robots = 0, rows = 0, programRules = 0;
   bool rechecked = false;
   std::vector<CertifyFinding> findings;
+  // Files in DIR the certificate does not list (build folders aside): the user's own, such as
+  // user_tasks.cmake and the tasks it adds. Not an error, but not covered by the certificate either.
+  std::vector<std::string> notCovered;
   // 0 valid and certified, 1 a finding, 2 the certificate cannot be read, 3 valid but uncertified.
   int exitCode = 2;
 };
