@@ -15,10 +15,8 @@ namespace {
 
 using namespace semo::runtime;
 
-template <class T> struct IsVector : std::false_type {};
-template <class T> struct IsVector<std::vector<T>> : std::true_type {};
-template <class T> struct IsPair : std::false_type {};
-template <class A, class B> struct IsPair<std::pair<A, B>> : std::true_type {};
+using schema::IsPair;
+using schema::IsVector;
 
 // ------------------------------------------------------------------ tokens
 
@@ -334,29 +332,6 @@ class Reader {
 
 // ------------------------------------------------------------------ comparing
 
-// A scalar as the generated code writes it.
-template <class T> std::string shown(const T& x) {
-  if constexpr (std::is_same_v<T, bool>) {
-    return x ? "true" : "false";
-  } else if constexpr (std::is_enum_v<T>) {
-    using Info = schema::EnumInfo<T>;
-    const auto i = static_cast<std::size_t>(x);
-    return std::string(Info::qualified) + "::" + std::string(i < Info::names.size() ? Info::names[i] : "?");
-  } else if constexpr (std::is_same_v<T, Id>) {
-    return x == kNone ? "kNone" : std::to_string(x);
-  } else if constexpr (std::is_integral_v<T>) {
-    return std::to_string(x);
-  } else if constexpr (std::is_floating_point_v<T>) {
-    char buffer[64];
-    const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x);
-    return std::string(buffer, end);
-  } else if constexpr (std::is_same_v<T, std::string>) {
-    return "\"" + x + "\"";
-  } else {
-    return "{" + shown(x.first) + ", " + shown(x.second) + "}";  // a pair
-  }
-}
-
 class Comparer {
  public:
   template <class T> bool same(const T& e, const T& a, const Node* n, const std::string& path) {
@@ -388,7 +363,7 @@ class Comparer {
       return !diff_;
     } else {
       if (e == a) return true;
-      return differ(n, path, shown(e), shown(a), {});
+      return differ(n, path, schema::scalarText(e), schema::scalarText(a), {});
     }
   }
 

@@ -1,9 +1,6 @@
 // Tables as C++ aggregate initializers (cpp_tables.hpp). Deterministic: members in declaration
 // order, numbers in their shortest exact form, so the same tables always give the same text.
 #include <algorithm>
-#include <charconv>
-#include <cmath>
-#include <stdexcept>
 #include <type_traits>
 
 #include "semo/codegen/cpp_tables.hpp"
@@ -15,44 +12,10 @@ namespace {
 
 using namespace semo::runtime;
 
-template <class T> struct IsVector : std::false_type {};
-template <class T> struct IsVector<std::vector<T>> : std::true_type {};
-template <class T> struct IsPair : std::false_type {};
-template <class A, class B> struct IsPair<std::pair<A, B>> : std::true_type {};
+using schema::IsPair;
+using schema::IsVector;
 
 constexpr int kWidth = 110;  // a nest that fits on one line stays on one
-
-std::string quote(std::string_view s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    const auto u = static_cast<unsigned char>(c);
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
-      case '\r': out += "\\r"; break;
-      default:
-        if (u < 0x20 || u == 0x7f) {
-          // Three octal digits: unlike \x, an octal escape never swallows the character after it.
-          out += '\\';
-          out += static_cast<char>('0' + ((u >> 6) & 7));
-          out += static_cast<char>('0' + ((u >> 3) & 7));
-          out += static_cast<char>('0' + (u & 7));
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
-}
-
-std::string number(double d) {
-  if (!std::isfinite(d)) throw std::invalid_argument("a table holds a number that is not finite");
-  char buffer[64];
-  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, d);  // shortest exact
-  return std::string(buffer, end);
-}
 
 class Writer {
  public:
@@ -60,22 +23,8 @@ class Writer {
 
   // The value on one line.
   template <class T> std::string inlineText(const T& x) const {
-    if constexpr (std::is_same_v<T, bool>) {
-      return x ? "true" : "false";
-    } else if constexpr (std::is_enum_v<T>) {
-      using Info = schema::EnumInfo<T>;
-      const auto i = static_cast<std::size_t>(x);
-      return std::string(Info::qualified) + "::" + std::string(i < Info::names.size() ? Info::names[i] : "?");
-    } else if constexpr (std::is_same_v<T, Id>) {
-      return x == kNone ? "kNone" : std::to_string(x);
-    } else if constexpr (std::is_integral_v<T>) {
-      return std::to_string(x);
-    } else if constexpr (std::is_floating_point_v<T>) {
-      return number(x);
-    } else if constexpr (std::is_same_v<T, std::string>) {
-      return quote(x);
-    } else if constexpr (IsPair<T>::value) {
-      return "{" + inlineText(x.first) + ", " + inlineText(x.second) + "}";
+    if constexpr (std::is_arithmetic_v<T> || std::is_enum_v<T> || std::is_same_v<T, std::string> || IsPair<T>::value) {
+      return schema::scalarText(x);
     } else if constexpr (IsVector<T>::value) {
       std::string out = "{";
       for (std::size_t i = 0; i < x.size(); ++i) out += (i == 0 ? "" : ", ") + inlineText(x[i]);

@@ -8,7 +8,14 @@
 // describe(v, x) calls v.field("name", x.member) for every member; enumNames<E>() gives each enum's
 // values in order, with the qualified name the generated code writes.
 #include <array>
+#include <charconv>
+#include <cmath>
+#include <stdexcept>
+#include <string>
 #include <string_view>
+#include <type_traits>
+#include <utility>
+#include <vector>
 
 #include "semo/runtime/tables.hpp"
 
@@ -162,6 +169,69 @@ template <class V> void describe(V& v, MissionTables& x) {
       v.field("knowledge", x.knowledge), v.field("groupBlocks", x.groupBlocks), v.field("leaderBlocks", x.leaderBlocks),
       v.field("abstraction", x.abstraction), v.field("rules", x.rules), v.field("assumptions", x.assumptions),
       v.field("modelFingerprint", x.modelFingerprint);
+}
+
+// ------------------------------------------------------------------ values as C++ (writer and comparison)
+
+template <class T> struct IsVector : std::false_type {};
+template <class T> struct IsVector<std::vector<T>> : std::true_type {};
+template <class T> struct IsPair : std::false_type {};
+template <class A, class B> struct IsPair<std::pair<A, B>> : std::true_type {};
+
+// A string literal: C escapes, and three octal digits for other control bytes (unlike \x, an octal
+// escape never swallows the character after it).
+inline std::string quote(std::string_view s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    const auto u = static_cast<unsigned char>(c);
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      case '\r': out += "\\r"; break;
+      default:
+        if (u < 0x20 || u == 0x7f) {
+          out += '\\';
+          out += static_cast<char>('0' + ((u >> 6) & 7));
+          out += static_cast<char>('0' + ((u >> 3) & 7));
+          out += static_cast<char>('0' + (u & 7));
+        } else {
+          out += c;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+// The shortest text that reads back as exactly `d`.
+inline std::string number(double d) {
+  if (!std::isfinite(d)) throw std::invalid_argument("a table holds a number that is not finite");
+  char buffer[64];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, d);
+  return std::string(buffer, end);
+}
+
+// A scalar (or a pair of them) as the generated code writes it.
+template <class T> std::string scalarText(const T& x) {
+  if constexpr (std::is_same_v<T, bool>) {
+    return x ? "true" : "false";
+  } else if constexpr (std::is_enum_v<T>) {
+    using Info = EnumInfo<T>;
+    const auto i = static_cast<std::size_t>(x);
+    return std::string(Info::qualified) + "::" + std::string(i < Info::names.size() ? Info::names[i] : "?");
+  } else if constexpr (std::is_same_v<T, Id>) {
+    return x == kNone ? "kNone" : std::to_string(x);
+  } else if constexpr (std::is_integral_v<T>) {
+    return std::to_string(x);
+  } else if constexpr (std::is_floating_point_v<T>) {
+    return number(x);
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    return quote(x);
+  } else {
+    static_assert(IsPair<T>::value, "a scalar or a pair");
+    return "{" + scalarText(x.first) + ", " + scalarText(x.second) + "}";
+  }
 }
 
 // What the mission file keeps of a robot: who it is (name, type, team, place in the team, body);

@@ -29,6 +29,18 @@ std::unique_ptr<Parsed> parse(const std::string& text, const std::string& declar
   return p;
 }
 
+// The robot table in `text` (nullopt when it does not parse or read); the parse tree, which the
+// comparisons point into, stays in `parsed`.
+std::optional<runtime::RobotTable> readRobotText(const std::string& text, std::unique_ptr<Parsed>& parsed) {
+  parsed = parse(text, "static const RobotTable table");
+  if (!parsed->node) return std::nullopt;
+  runtime::RobotTable r;
+  DiagnosticEngine d(parsed->sources);
+  if (codegen::cpp::readRobot(*parsed->node, r, d)) return r;
+  for (const Diagnostic& diag : d.diagnostics()) parsed->errors += d.format(diag);
+  return std::nullopt;
+}
+
 runtime::MissionTables projected(const std::string& dir, const std::string& stem) {
   auto l = test::loadExample(dir, stem);
   EXPECT_TRUE(l);
@@ -61,13 +73,11 @@ TEST_P(RoundTrip, EveryTableReadsBackEqual) {
   for (const runtime::RobotTable& robot : tables.robots) {
     SCOPED_TRACE(robot.name);
     const std::string text = "static const RobotTable table" + codegen::cpp::robotInitializer(robot, {}, 2) + ";\n";
-    auto p = parse(text, "static const RobotTable table");
-    ASSERT_TRUE(p->node) << p->errors;
-    runtime::RobotTable r;
-    DiagnosticEngine d(p->sources);
-    ASSERT_TRUE(codegen::cpp::readRobot(*p->node, r, d));
-    EXPECT_TRUE(r == robot);
-    EXPECT_FALSE(codegen::cpp::compareRobot(robot, r, *p->node));
+    std::unique_ptr<Parsed> p;
+    const std::optional<runtime::RobotTable> r = readRobotText(text, p);
+    ASSERT_TRUE(r) << p->errors;
+    EXPECT_TRUE(*r == robot);
+    EXPECT_FALSE(codegen::cpp::compareRobot(robot, *r, *p->node));
     // Every row is one line of its own.
     std::size_t rows = 0;
     for (const runtime::PlanTable& plan : robot.plans) rows += plan.rows.size();
@@ -105,12 +115,10 @@ TEST(CppTables, AnEditedRowIsTheFirstDifferenceWithItsRuleAndLine) {
   const std::size_t toAt = edited.find(to, at);
   ASSERT_NE(toAt, std::string::npos);
   edited.replace(toAt, to.size(), ".to = " + std::to_string(row.to + 1));
-  auto p = parse(edited, "static const RobotTable table");
-  ASSERT_TRUE(p->node) << p->errors;
-  runtime::RobotTable r;
-  DiagnosticEngine d(p->sources);
-  ASSERT_TRUE(codegen::cpp::readRobot(*p->node, r, d));
-  const auto diff = codegen::cpp::compareRobot(o.robot, r, *p->node);
+  std::unique_ptr<Parsed> p;
+  const std::optional<runtime::RobotTable> r = readRobotText(edited, p);
+  ASSERT_TRUE(r) << p->errors;
+  const auto diff = codegen::cpp::compareRobot(o.robot, *r, *p->node);
   ASSERT_TRUE(diff);
   EXPECT_NE(diff->path.find(".rows["), std::string::npos) << diff->path;
   EXPECT_TRUE(diff->path.ends_with(".to")) << diff->path;
@@ -134,12 +142,10 @@ TEST(CppTables, ARemovedRowIsARuleWithoutARow) {
   const std::size_t at = edited.find(line);
   ASSERT_NE(at, std::string::npos);
   edited.erase(at, line.size());
-  auto p = parse(edited, "static const RobotTable table");
-  ASSERT_TRUE(p->node) << p->errors;
-  runtime::RobotTable r;
-  DiagnosticEngine d(p->sources);
-  ASSERT_TRUE(codegen::cpp::readRobot(*p->node, r, d));
-  const auto diff = codegen::cpp::compareRobot(o.robot, r, *p->node);
+  std::unique_ptr<Parsed> p;
+  const std::optional<runtime::RobotTable> r = readRobotText(edited, p);
+  ASSERT_TRUE(r) << p->errors;
+  const auto diff = codegen::cpp::compareRobot(o.robot, *r, *p->node);
   ASSERT_TRUE(diff);
   EXPECT_EQ(diff->irRule, row.irRule);
   EXPECT_NE(diff->what.find("has no row for this IR rule"), std::string::npos) << diff->what;
