@@ -105,7 +105,10 @@ class Team {
   [[nodiscard]] Micros time() const { return now_; }
   [[nodiscard]] const RobotRun& robot(Id r) const { return robots_[r]; }
   [[nodiscard]] const Pose& pose(Id r) const { return poses_[r]; }
-  [[nodiscard]] bool over() const { return stopped_ || (goalSeen_ && options_.stopAtGoal); }
+  // A networked robot's run is over when it crashes too: a crash stops its program.
+  [[nodiscard]] bool over() const {
+    return stopped_ || (goalSeen_ && options_.stopAtGoal) || (node_ != nullptr && !robots_[node_->self].alive);
+  }
   // Replay (replay.hpp): takes exactly `rules`, then runs freely for `settle` seconds.
   void runScript(const std::vector<Id>& rules, const ReplayOptions& options);
 

@@ -163,7 +163,7 @@ bool Team::guardsHold(Id robot, const Row& row) const {
       case GuardRow::Kind::Elected:
       case GuardRow::Kind::NotElected: {
         const bool elected = r.leads[g.index] != 0 || (noLeader(g.index) && electedLeader(g.index) == robot);
-        holds = elected == (g.kind == GuardRow::Kind::Elected) && settledForElection(robot, g.index);
+        holds = elected == (g.kind == GuardRow::Kind::Elected);
         break;
       }
       case GuardRow::Kind::Goal: {
@@ -174,6 +174,11 @@ bool Team::guardsHold(Id robot, const Row& row) const {
       }
     }
     if (!holds) return false;
+  }
+  // A networked robot runs an election (its own, or as a robot of the `others` arm forming the
+  // block first) only once the candidates arriving with it have had time to say so.
+  for (const EffectRow& e : row.effects) {
+    if (e.kind == EffectRow::Kind::Elect && !settledForElection(robot, e.index)) return false;
   }
   return true;
 }

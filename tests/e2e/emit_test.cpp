@@ -219,6 +219,36 @@ TEST(EmitScouting, RefusedThenUncertifiedBuildsAndTheLeaderCrashIsRepaired) {
   CliRun c = verify("certify '" + out.string() + "'", dir);
   EXPECT_EQ(c.exit, 3) << c.out << c.err;
   EXPECT_NE(c.out.find("UNCERTIFIED: emitted with --uncertified"), std::string::npos) << c.out;
+
+  // As deployed: five processes over UDP, bounded in time. The first leader (bully: ev3_1) falls
+  // silent at 3 s, while ev3_0 still waits in the block's `others` arm; ev3_0 takes over within the
+  // timeout and one heartbeat period, its reports reach the master, and the mission completes.
+  const std::string world = std::string(SEMO_SOURCE_DIR) + "/specs/examples/scouting/scouting.world.json";
+  std::string team = "(";
+  for (const char* robot : {"irobot", "burger_0", "burger_1", "ev3_0", "ev3_1"}) {
+    team += "timeout 120 '" + (out / "build" / robot).string() + "' --world '" + world + "' --duration 50s --port-base 47360 --trace '" +
+            (dir / (std::string(robot) + ".json")).string() + "'" + (std::string(robot) == "ev3_1" ? " --crash-at 3s" : "") + " > '" +
+            (dir / (std::string(robot) + ".out")).string() + "' 2>&1 & ";
+  }
+  ASSERT_EQ(shell(team + "wait)", dir / "team.log"), 0) << slurp(dir / "team.log");
+  EXPECT_NE(slurp(dir / "ev3_1.out").find("crashed (--crash-at)"), std::string::npos) << slurp(dir / "ev3_1.out");
+  for (const char* robot : {"irobot", "burger_0", "burger_1", "ev3_0"}) {
+    EXPECT_NE(slurp(dir / (std::string(robot) + ".out")).find("the mission's goal reached"), std::string::npos) << robot << ": "
+                                                                                                             << slurp(dir / (std::string(robot) + ".out"));
+  }
+  const nlohmann::json master = nlohmann::json::parse(slurp(dir / "irobot.json"));
+  const nlohmann::json& changes = master["summary"]["leaderChanges"];
+  ASSERT_EQ(changes.size(), 2u) << changes.dump();
+  EXPECT_EQ(changes[0]["to"], "ev3_1");
+  EXPECT_EQ(changes[1]["to"], "ev3_0");
+  const double takeover = changes[1]["t"].get<double>();
+  EXPECT_GT(takeover, 3.0);
+  EXPECT_LE(takeover, 3.0 + 2.5 + 0.2) << "timeout 2 s + one heartbeat period (+ the programs' start skew)";
+  int reportsAfter = 0;
+  for (const auto& ev : master["events"]) {
+    if (ev["kind"] == "deliver" && ev.value("detail", "") == "SlaveTeam.paperReport" && ev["t"].get<double>() >= takeover) ++reportsAfter;
+  }
+  EXPECT_GE(reportsAfter, 3) << "the new leader's reports reach the master";
 }
 
 TEST(EmitDeterminism, SameInputsSameBytes) {

@@ -19,8 +19,10 @@ struct Team {
 };
 
 // Runs every robot of an example as a node, to `seconds` (or until every node sees the goal).
+// `startAt` (per robot, microseconds; default all 0): when each program starts, as processes launched
+// one after the other do; a node's own clock starts then.
 Team runNodes(const std::string& dir, const std::string& stem, runtime::NodeOptions options, double seconds, std::uint64_t seed = 1,
-              const std::string& strategy = "strategy.xml") {
+              const std::string& strategy = "strategy.xml", std::vector<std::int64_t> startAt = {}) {
   Team t;
   t.mission = test::loadExample(dir, stem, strategy);
   EXPECT_TRUE(t.mission && t.mission->world);
@@ -36,12 +38,14 @@ Team runNodes(const std::string& dir, const std::string& stem, runtime::NodeOpti
   for (runtime::Id r = 0; r < tables.robots.size(); ++r) {
     t.nodes.push_back(std::make_unique<runtime::RobotNode>(tables, r, *t.mission->world, library, *t.transport, options));
   }
-  for (auto& n : t.nodes) n->start();
+  startAt.resize(t.nodes.size(), 0);
   std::vector<bool> running(t.nodes.size(), true);
-  for (std::int64_t micros = 0; micros <= static_cast<std::int64_t>(seconds * 1e6); micros += 1000) {
+  const auto end = static_cast<std::int64_t>(seconds * 1e6);
+  for (std::int64_t micros = 0; micros <= end + startAt.back(); micros += 1000) {
     bool any = false;
     for (std::size_t i = 0; i < t.nodes.size(); ++i) {
-      if (running[i]) running[i] = t.nodes[i]->advanceTo(micros);
+      if (micros == startAt[i]) t.nodes[i]->start();
+      if (running[i] && micros >= startAt[i]) running[i] = t.nodes[i]->advanceTo(micros - startAt[i]);
       any = any || running[i];
     }
     if (!any) break;
@@ -120,6 +124,25 @@ TEST(RobotNode, ScoutingReplacesItsCrashedLeaderOverTheNetwork) {
   for (std::size_t i = 0; i < t.nodes.size(); ++i) {
     if (i == ev3_1) continue;
     EXPECT_TRUE(t.traces[i].summary.completed) << tables.robots[i].name;
+  }
+}
+
+// Programs started one after the other: the candidates reach the Report block's formation point at
+// different times on their own clocks, and the Burgers (in its `others` arm) may form it first. Each
+// robot elects only after the election window, so every robot sees the same leader: ev3_1 (bully).
+TEST(RobotNode, EveryRobotAgreesOnTheLeaderWhateverTheStartingOrder) {
+  const std::vector<std::vector<std::int64_t>> orders = {
+      {0, 0, 0, 0, 0}, {0, 50'000, 100'000, 150'000, 200'000}, {200'000, 150'000, 100'000, 50'000, 0}, {0, 0, 250'000, 0, 0}};
+  for (const std::vector<std::int64_t>& order : orders) {
+    Team t = runNodes("scouting", "scouting", {}, 4, 1, "strategy.xml", order);
+    const runtime::MissionTables& tables = t.mission->tables;
+    ASSERT_EQ(order.size(), tables.robots.size());
+    const runtime::Id ev3_1 = robotIndex(tables, "ev3_1");
+    for (std::size_t i = 0; i < t.nodes.size(); ++i) {
+      SCOPED_TRACE(tables.robots[i].name + ", started " + std::to_string(order[i] / 1000) + " ms late");
+      ASSERT_FALSE(t.traces[i].summary.leaderChanges.empty()) << lines(tables, t.traces[i]);
+      for (const runtime::LeaderChange& c : t.traces[i].summary.leaderChanges) EXPECT_EQ(c.to, ev3_1) << lines(tables, t.traces[i]);
+    }
   }
 }
 

@@ -162,6 +162,10 @@ std::vector<std::string> filesRead(const SourceManager& sources);
 // The tables of a generated project's simulation module (a build folder or the module itself);
 // nullopt with `error` when it cannot be loaded or was built against another runtime.
 std::optional<runtime::MissionTables> loadGeneratedTables(const std::string& path, std::string& error);
+// The certificate of the generated project a --generated path is in (its build folder, or the module).
+std::optional<std::string> generatedCertificate(const std::string& path);
+// The model options (--crash, --loss, --fair-loss) a certificate records; false with `error`.
+bool modelOptionsOf(const std::string& certificate, TranslationOptions& out, std::string& error);
 // Where two tables first differ, in words ("" when they are equal).
 std::string firstTableDifference(const runtime::MissionTables& expected, const runtime::MissionTables& actual);
 

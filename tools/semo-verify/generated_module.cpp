@@ -3,6 +3,8 @@
 #include <dlfcn.h>
 
 #include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "semo/codegen/cpp_tables.hpp"
@@ -33,6 +35,36 @@ std::optional<runtime::MissionTables> loadGeneratedTables(const std::string& pat
   }
   dlclose(handle);
   return out;
+}
+
+std::optional<std::string> generatedCertificate(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path given(path);
+  const fs::path folder = fs::is_directory(given, ec) ? given : given.parent_path();
+  for (const fs::path& candidate : {folder / "certificate.json", folder.parent_path() / "certificate.json"}) {
+    if (fs::is_regular_file(candidate, ec)) return candidate.string();
+  }
+  return std::nullopt;
+}
+
+bool modelOptionsOf(const std::string& certificate, TranslationOptions& out, std::string& error) {
+  std::ifstream in(certificate);
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  const nlohmann::json* options = j.is_object() && j.contains("modelOptions") ? &j["modelOptions"] : nullptr;
+  if (options == nullptr || !options->is_object()) {
+    error = "'" + certificate + "' is not a certificate semo can read (no \"modelOptions\")";
+    return false;
+  }
+  try {
+    if (options->contains("crash")) out.crashOverride = options->at("crash").get<int>();
+    if (options->contains("loss")) out.lossOverride = options->at("loss").get<std::string>();
+    if (options->contains("fairLoss")) out.fairLossOverride = options->at("fairLoss").get<bool>();
+  } catch (const nlohmann::json::exception& e) {
+    error = "'" + certificate + "': \"modelOptions\": " + e.what();
+    return false;
+  }
+  return true;
 }
 
 std::string firstTableDifference(const runtime::MissionTables& expected, const runtime::MissionTables& actual) {

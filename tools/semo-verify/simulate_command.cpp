@@ -133,8 +133,20 @@ int runSimulate(const SimulateOptions& options) {
   SourceManager sources;
   DiagnosticEngine diags(sources);
   std::optional<model::MissionModel> mission = loadMission({options.mission, options.strategy, options.robotsDir}, sources, diags);
+  // A generated project's tables were projected from the model as emit built it (--crash, --loss, ...):
+  // its certificate says how, and the same model is built here.
+  TranslationOptions modelOptions;
+  if (options.generated) {
+    if (const std::optional<std::string> certificate = generatedCertificate(*options.generated)) {
+      std::string error;
+      if (!modelOptionsOf(*certificate, modelOptions, error)) {
+        std::cerr << "semo-verify: error: --generated: " << error << "\n";
+        return kBadInput;
+      }
+    }
+  }
   std::optional<Translation> translation;
-  if (mission) translation = translateMission(*mission, TranslationOptions{}, sources, diags);
+  if (mission) translation = translateMission(*mission, modelOptions, sources, diags);
   for (const Diagnostic& d : diags.diagnostics()) std::cerr << diags.format(d);
   if (!translation) return kBadInput;
   runtime::MissionTables tables = codegen::project(*mission, *translation, sources);
@@ -223,7 +235,7 @@ int runSimulate(const SimulateOptions& options) {
     }
     if (const std::string diff = firstTableDifference(tables, *generated); !diff.empty()) {
       std::cerr << "semo-verify: error: --generated: the module's tables are not the verified model's projection: " << diff
-                << " (emit again from these inputs, and build)\n";
+                << " (they were emitted from other inputs, or the module was not built again since: emit from these inputs, and build)\n";
       return kViolated;
     }
     tables = std::move(*generated);
