@@ -9,6 +9,9 @@
 #include <unordered_set>
 
 #include "liveness_product.hpp"
+#include "semo/checker/fairness.hpp"
+#include "semo/checker/slicing.hpp"
+#include "sliced_liveness.hpp"
 
 namespace semo::checker {
 
@@ -26,19 +29,27 @@ using detail::Product;
 using detail::ruleOf;
 
 // Searches the product for a fair accepting cycle: Tarjan's algorithm for the strongly connected
-// components, then, per component, the acceptance sets and the fairness of every rule; a strongly
-// fair rule that is enabled in the component but never taken in it removes the states where it is
-// enabled, and the rest is searched again (as in Emerson and Lei's algorithm).
+// components, then, per component, the acceptance sets and the fairness of every group of rules
+// (fairness.hpp); a strongly fair group that is enabled in the component but never taken in it
+// removes the states where it is enabled, and the rest is searched again (as in Emerson and Lei's
+// algorithm). For a property checked on a settling world (ir::Property::settled), the cycle
+// decides each sensed condition one way only: a component whose steps decide one both ways is
+// searched again twice, without the steps that decide it one way, then without the others.
 class FairCycleSearch {
  public:
-  FairCycleSearch(const CompiledModel& cm, const Buchi& ba, const Product& p)
-      : cm_(cm), ba_(ba), p_(p), index_(p.size(), kUnvisited), low_(p.size(), 0), member_(p.size(), 0),
-        enabledCount_(cm.rules().size(), 0), taken_(cm.rules().size(), 0), everywhere_(cm.rules().size(), 0),
-        somewhere_(cm.rules().size(), 0), orbitTaken_(cm.rules().size(), 0), ignored_(cm.rules().size(), 0),
-        orbit_(cm.rules().size(), 0), local_(p.symmetric() ? p.size() : 0, 0) {
-    for (std::uint32_t r = 0; r < cm.rules().size(); ++r) {
-      if (cm.model().rules[r].weaklyFair || cm.model().rules[r].stronglyFair) fairRules_.push_back(r);
-    }
+  FairCycleSearch(const CompiledModel& cm, const Buchi& ba, const Product& p, bool settled)
+      : cm_(cm), ba_(ba), p_(p), fairness_(Fairness::of(cm.model())), sensing_(Sensing::in(cm.model())), settled_(settled),
+        allowed_(sensing_.points, -1), index_(p.size(), kUnvisited),
+        low_(p.size(), 0), member_(p.size(), 0), enabledCount_(fairness_.groups(), 0), seenIn_(fairness_.groups(), 0),
+        taken_(fairness_.groups(), 0), everywhere_(fairness_.groups(), 0), somewhere_(fairness_.groups(), 0),
+        orbitTaken_(fairness_.groups(), 0), ignored_(fairness_.groups(), 0), orbit_(fairness_.groups(), 0),
+        local_(p.symmetric() ? p.size() : 0, 0) {
+  }
+
+  // Whether a cycle may use the edge: on a settling world, its sensed decisions must be the ones
+  // the cycle keeps (after find(): those of the cycle found).
+  [[nodiscard]] bool usable(const Edge& e) const {
+    return !settled_ || ruleOf(e.via) == kStutter || sensing_.agrees(ruleOf(e.via), allowed_);
   }
 
   // A fair accepting strongly connected set of product states, or empty. Of several, the one that
@@ -69,14 +80,14 @@ class FairCycleSearch {
     }
   }
 
-  [[nodiscard]] const std::vector<std::uint32_t>& fairRules() const { return fairRules_; }
+  [[nodiscard]] const Fairness& fairness() const { return fairness_; }
 
  private:
   static constexpr std::uint32_t kUnvisited = 0xffffffffu;
 
   bool hasSelfEdge(std::uint32_t n) const {
     for (const Edge* e = p_.edgesBegin(n); e != p_.edgesEnd(n); ++e) {
-      if (e->target == n) return true;
+      if (e->target == n && usable(*e)) return true;
     }
     return false;
   }
@@ -106,8 +117,9 @@ class FairCycleSearch {
       while (!call.empty()) {
         Frame& f = call.back();
         if (f.next != p_.edgesEnd(f.node)) {
-          std::uint32_t w = (f.next++)->target;
-          if (member_[w] != stamp) continue;
+          const Edge& e = *f.next++;
+          std::uint32_t w = e.target;
+          if (member_[w] != stamp || !usable(e)) continue;
           if (index_[w] == kUnvisited) {
             index_[w] = low_[w] = counter++;
             touched.push_back(w);
@@ -138,6 +150,33 @@ class FairCycleSearch {
     return out;
   }
 
+  // When the component's steps decide a sensed condition both ways, searches it again with each way
+  // forbidden in turn (found_ is then set or empty) and returns true; false when none is.
+  bool splitOnSensing(const std::vector<std::uint32_t>& component, std::uint32_t stamp) {
+    std::vector<std::int8_t> seen(sensing_.points, 0);  // bit 1: decided false, bit 2: decided true
+    for (std::uint32_t n : component) {
+      for (const Edge* e = p_.edgesBegin(n); e != p_.edgesEnd(n); ++e) {
+        if (member_[e->target] != stamp || !usable(*e) || ruleOf(e->via) == kStutter) continue;
+        for (const Sensing::Decision& d : sensing_.of[ruleOf(e->via)]) {
+          seen[d.point] = static_cast<std::int8_t>(seen[d.point] | (d.holds ? 2 : 1));
+          if (seen[d.point] != 3) continue;
+          found_.clear();
+          for (std::int8_t way : {0, 1}) {
+            allowed_[d.point] = way;
+            std::uint32_t restStamp = ++stamp_;
+            for (std::uint32_t m : component) member_[m] = restStamp;
+            for (std::vector<std::uint32_t>& sub : components(component, restStamp)) {
+              if (analyze(sub)) return true;  // allowed_ stays as the cycle found needs it
+            }
+          }
+          allowed_[d.point] = -1;
+          return true;
+        }
+      }
+    }
+    return false;
+  }
+
   bool analyze(const std::vector<std::uint32_t>& component) {
     std::uint32_t stamp = ++stamp_;
     std::uint64_t acc = 0;
@@ -146,33 +185,44 @@ class FairCycleSearch {
       acc |= p_.acceptance(n);
     }
     if ((acc & ba_.allSets()) != ba_.allSets()) return false;
+    if (settled_ && splitOnSensing(component, stamp)) return found_.size() != 0;
     if (p_.symmetric()) liftComponent(component, stamp);
-    for (std::uint32_t r : fairRules_) enabledCount_[r] = 0, taken_[r] = 0;
+    const std::size_t groups = fairness_.groups();
+    std::fill(enabledCount_.begin(), enabledCount_.end(), 0);
+    std::fill(taken_.begin(), taken_.end(), 0);
     std::vector<std::uint32_t> on;
     for (std::size_t k = 0; k < component.size(); ++k) {
       std::uint32_t n = component[k];
       enabled(n, on);
-      for (std::uint32_t r : on) ++enabledCount_[absolute(k, r)];
+      ++visit_;
+      for (std::uint32_t r : on) {
+        std::uint32_t g = fairness_.groupOf[absolute(k, r)];
+        if (g == Fairness::kNone || seenIn_[g] == visit_) continue;
+        seenIn_[g] = visit_;
+        ++enabledCount_[g];
+      }
       for (const Edge* e = p_.edgesBegin(n); e != p_.edgesEnd(n); ++e) {
-        if (member_[e->target] == stamp && ruleOf(e->via) != kStutter) taken_[absolute(k, ruleOf(e->via))] = 1;
+        if (member_[e->target] != stamp || ruleOf(e->via) == kStutter || !usable(*e)) continue;
+        std::uint32_t g = fairness_.groupOf[absolute(k, ruleOf(e->via))];
+        if (g != Fairness::kNone) taken_[g] = 1;
       }
     }
-    // Per orbit of fair rules (a single rule without symmetry): enabled in every state, in some,
+    // Per orbit of groups (a single group without symmetry): enabled in every state, in some,
     // taken somewhere.
-    for (std::uint32_t r : fairRules_) everywhere_[r] = 1, somewhere_[r] = 0, orbitTaken_[r] = 0;
-    for (std::uint32_t r : fairRules_) {
-      std::uint32_t o = orbitOf(r);
-      everywhere_[o] = everywhere_[o] && enabledCount_[r] == component.size();
-      somewhere_[o] = somewhere_[o] || enabledCount_[r] != 0;
-      orbitTaken_[o] = orbitTaken_[o] || taken_[r];
+    for (std::size_t g = 0; g < groups; ++g) everywhere_[g] = 1, somewhere_[g] = 0, orbitTaken_[g] = 0;
+    for (std::uint32_t g = 0; g < groups; ++g) {
+      std::uint32_t o = orbitOf(g);
+      everywhere_[o] = everywhere_[o] && enabledCount_[g] == component.size();
+      somewhere_[o] = somewhere_[o] || enabledCount_[g] != 0;
+      orbitTaken_[o] = orbitTaken_[o] || taken_[g];
     }
-    bool anyIgnored = false;  // strongly fair rules enabled here and never taken here
-    for (std::uint32_t r : fairRules_) {
-      std::uint32_t o = orbitOf(r);
+    bool anyIgnored = false;  // strongly fair groups enabled here and never taken here
+    for (std::uint32_t g = 0; g < groups; ++g) {
+      std::uint32_t o = orbitOf(g);
       if (orbitTaken_[o] || !somewhere_[o]) continue;
       // Weak fairness: enabled in every state of the component and never taken -> no fair cycle.
       if (everywhere_[o]) return false;
-      if (cm_.model().rules[r].stronglyFair) ignored_[r] = 1, anyIgnored = true;
+      if (fairness_.strong[g]) ignored_[g] = 1, anyIgnored = true;
     }
     if (!anyIgnored) {
       found_ = component;
@@ -183,13 +233,16 @@ class FairCycleSearch {
     for (std::size_t k = 0; k < component.size(); ++k) {
       std::uint32_t n = component[k];
       enabled(n, on);
-      bool drop = std::any_of(on.begin(), on.end(), [&](std::uint32_t r) { return ignored_[absolute(k, r)] != 0; });
+      bool drop = std::any_of(on.begin(), on.end(), [&](std::uint32_t r) {
+        std::uint32_t g = fairness_.groupOf[absolute(k, r)];
+        return g != Fairness::kNone && ignored_[g] != 0;
+      });
       if (!drop) {
         rest.push_back(n);
         member_[n] = restStamp;
       }
     }
-    for (std::uint32_t r : fairRules_) ignored_[r] = 0;
+    std::fill(ignored_.begin(), ignored_.end(), 0);
     for (std::vector<std::uint32_t>& sub : components(rest, restStamp)) {
       if (analyze(sub)) return true;
     }
@@ -213,7 +266,7 @@ class FairCycleSearch {
     for (std::size_t head = 0; head < queue.size(); ++head) {
       std::uint32_t u = queue[head];
       for (const Edge* e = p_.edgesBegin(component[u]); e != p_.edgesEnd(component[u]); ++e) {
-        if (member_[e->target] != stamp) continue;
+        if (member_[e->target] != stamp || !usable(*e)) continue;
         std::uint32_t w = local_[e->target];
         if (placed[w]) continue;
         placed[w] = 1;
@@ -224,7 +277,7 @@ class FairCycleSearch {
     std::unordered_set<std::string> generators;
     for (std::size_t u = 0; u < component.size(); ++u) {
       for (const Edge* e = p_.edgesBegin(component[u]); e != p_.edgesEnd(component[u]); ++e) {
-        if (member_[e->target] != stamp) continue;
+        if (member_[e->target] != stamp || !usable(*e)) continue;
         const Permutation& there = frame[local_[e->target]];
         Permutation arrived = compose(frame[u], perms.inverseOf(p_.permOf(e)));
         if (arrived != there) generators.insert(keyOf(compose(arrived, inverse(there))));
@@ -232,13 +285,14 @@ class FairCycleSearch {
     }
     frameSwaps_.resize(component.size());
     for (std::size_t k = 0; k < component.size(); ++k) frameSwaps_[k] = p_.symmetry().decompose(frame[k]);
-    for (std::uint32_t r : fairRules_) orbit_[r] = r;
+    for (std::uint32_t g = 0; g < orbit_.size(); ++g) orbit_[g] = g;
     for (const std::string& key : generators) {
       Permutation g(key.size() / sizeof(std::uint16_t));
       std::copy(key.begin(), key.end(), reinterpret_cast<char*>(g.data()));
       Symmetry::Swaps swaps = p_.symmetry().decompose(g);
-      for (std::uint32_t r : fairRules_) {
-        std::uint32_t a = orbitOf(r), b = orbitOf(p_.symmetry().image(r, swaps));
+      for (std::uint32_t r = 0; r < fairness_.groupOf.size(); ++r) {
+        if (fairness_.groupOf[r] == Fairness::kNone) continue;
+        std::uint32_t a = orbitOf(fairness_.groupOf[r]), b = orbitOf(fairness_.groupOf[p_.symmetry().image(r, swaps)]);
         if (a != b) orbit_[std::max(a, b)] = std::min(a, b);
       }
     }
@@ -248,22 +302,26 @@ class FairCycleSearch {
   [[nodiscard]] std::uint32_t absolute(std::size_t k, std::uint32_t r) const {
     return p_.symmetric() ? p_.symmetry().image(r, frameSwaps_[k]) : r;
   }
-  std::uint32_t orbitOf(std::uint32_t r) {
-    if (!p_.symmetric()) return r;
-    while (orbit_[r] != r) r = orbit_[r] = orbit_[orbit_[r]];
-    return r;
+  std::uint32_t orbitOf(std::uint32_t g) {
+    if (!p_.symmetric()) return g;
+    while (orbit_[g] != g) g = orbit_[g] = orbit_[orbit_[g]];
+    return g;
   }
 
   const CompiledModel& cm_;
   const Buchi& ba_;
   const Product& p_;
+  const Fairness fairness_;
+  const Sensing sensing_;
+  const bool settled_;
+  std::vector<std::int8_t> allowed_;  // per sensed condition: how the cycle may decide it (-1: either way)
   std::vector<std::uint32_t> index_, low_, member_;
   std::vector<char> onStack_;
-  std::vector<std::uint32_t> enabledCount_;
+  std::vector<std::uint32_t> enabledCount_, seenIn_;  // per group: states it is enabled in; the last state counted
+  std::uint32_t visit_ = 0;
   std::vector<char> taken_, everywhere_, somewhere_, orbitTaken_, ignored_;
-  std::vector<std::uint32_t> orbit_, local_;        // union-find over the rules; a state's place in its component
+  std::vector<std::uint32_t> orbit_, local_;        // union-find over the groups; a state's place in its component
   std::vector<Symmetry::Swaps> frameSwaps_;
-  std::vector<std::uint32_t> fairRules_;
   std::uint32_t stamp_ = 0;
   std::vector<std::uint32_t> found_;
   std::vector<Value> values_;
@@ -273,43 +331,50 @@ class FairCycleSearch {
 // A loop through the fair accepting set `cycleSet` that visits every acceptance set and treats
 // every fair rule fairly, starting and ending at `entry`: greedy, to the nearest state or step
 // that discharges an obligation still open.
-std::vector<Edge> fairLoop(const CompiledModel& cm, const Buchi& ba, const Product& p, FairCycleSearch& search,
+std::vector<Edge> fairLoop(const Buchi& ba, const Product& p, FairCycleSearch& search,
                            const std::vector<std::uint32_t>& cycleSet, std::uint32_t entry) {
   std::vector<char> inSet(p.size(), 0);
   for (std::uint32_t n : cycleSet) inSet[n] = 1;
   std::uint64_t accPending = ba.allSets();
   std::vector<std::uint32_t> on;
-  // Fair rules enabled somewhere here must be treated fairly on the loop.
-  std::vector<char> pending(cm.rules().size(), 0);
+  // Fair groups enabled somewhere here must be treated fairly on the loop.
+  const Fairness& fairness = search.fairness();
+  std::vector<char> pending(fairness.groups(), 0);
   for (std::uint32_t n : cycleSet) {
     search.enabled(n, on);
-    for (std::uint32_t r : on) pending[r] = 1;
+    for (std::uint32_t r : on) {
+      if (fairness.groupOf[r] != Fairness::kNone) pending[fairness.groupOf[r]] = 1;
+    }
   }
   std::vector<std::uint32_t> open;
-  std::vector<char> fair(cm.rules().size(), 0);
-  for (std::uint32_t r : search.fairRules()) fair[r] = 1;
-  for (std::uint32_t r = 0; r < pending.size(); ++r) {
-    pending[r] = pending[r] && fair[r];
-    if (pending[r]) open.push_back(r);
+  for (std::uint32_t g = 0; g < pending.size(); ++g) {
+    if (pending[g]) open.push_back(g);
   }
+  std::vector<char> enabledHere(fairness.groups(), 0);
   auto nodeDischarges = [&](std::uint32_t n, bool apply) {
     bool any = (p.acceptance(n) & accPending) != 0;
     if (apply) accPending &= ~p.acceptance(n);
     search.enabled(n, on);
-    for (std::uint32_t r : open) {
-      if (!pending[r] || cm.model().rules[r].stronglyFair) continue;
-      if (std::find(on.begin(), on.end(), r) == on.end()) {
-        any = true;
-        if (apply) pending[r] = 0;
-      }
+    for (std::uint32_t r : on) {
+      if (fairness.groupOf[r] != Fairness::kNone) enabledHere[fairness.groupOf[r]] = 1;
+    }
+    for (std::uint32_t g : open) {
+      if (!pending[g] || fairness.strong[g] || enabledHere[g]) continue;
+      any = true;  // a weakly fair group disabled here
+      if (apply) pending[g] = 0;
+    }
+    for (std::uint32_t r : on) {
+      if (fairness.groupOf[r] != Fairness::kNone) enabledHere[fairness.groupOf[r]] = 0;
     }
     return any;
   };
   auto edgeDischarges = [&](std::uint32_t via) {
-    return ruleOf(via) != kStutter && pending[ruleOf(via)] != 0;
+    if (ruleOf(via) == kStutter) return false;
+    std::uint32_t g = fairness.groupOf[ruleOf(via)];
+    return g != Fairness::kNone && pending[g] != 0;
   };
   auto anyOpen = [&] {
-    return accPending != 0 || std::any_of(open.begin(), open.end(), [&](std::uint32_t r) { return pending[r] != 0; });
+    return accPending != 0 || std::any_of(open.begin(), open.end(), [&](std::uint32_t g) { return pending[g] != 0; });
   };
 
   std::vector<Edge> loop;
@@ -326,7 +391,7 @@ std::vector<Edge> fairLoop(const CompiledModel& cm, const Buchi& ba, const Produ
       std::uint32_t u = queue.front();
       queue.pop_front();
       for (const Edge* e = p.edgesBegin(u); e != p.edgesEnd(u); ++e) {
-        if (!inSet[e->target]) continue;
+        if (!inSet[e->target] || !search.usable(*e)) continue;
         if (goal(*e)) {
           std::vector<Edge> path{*e};
           for (std::uint32_t v = u; v != current;) {
@@ -336,7 +401,9 @@ std::vector<Edge> fairLoop(const CompiledModel& cm, const Buchi& ba, const Produ
           }
           std::reverse(path.begin(), path.end());
           for (const Edge& step : path) {
-            if (ruleOf(step.via) != kStutter) pending[ruleOf(step.via)] = 0;
+            if (ruleOf(step.via) != kStutter && fairness.groupOf[ruleOf(step.via)] != Fairness::kNone) {
+              pending[fairness.groupOf[ruleOf(step.via)]] = 0;
+            }
             nodeDischarges(step.target, true);
             loop.push_back(step);
           }
@@ -361,6 +428,8 @@ std::vector<Edge> fairLoop(const CompiledModel& cm, const Buchi& ba, const Produ
 
 Trace lasso(const CompiledModel& cm, const Product& p, std::uint32_t entry, const std::vector<Edge>& loop) {
   Trace t = detail::traceTo(cm, p.store(), entry);
+  // Time passing on the way in (the automaton moving on while the model stays) is no step.
+  t.steps.erase(std::remove_if(t.steps.begin(), t.steps.end(), [](const Step& s) { return s.rule == kStutter; }), t.steps.end());
   t.loopStart = t.steps.size();
   const StateLayout& layout = cm.layout();
   std::vector<Value> before(layout.variables()), after(layout.variables());
@@ -389,6 +458,7 @@ struct Outcome {
   std::string why;
   bool reduced = false;  // searched up to symmetry
   std::string note;
+  LivenessMethod method;
 };
 
 // With `symmetry` (non-null only when every atom of the property is invariant), the product of
@@ -396,7 +466,7 @@ struct Outcome {
 // A violation found there is searched again without symmetry for a concrete lasso.
 Outcome checkProperty(const CompiledModel& cm, const ir::Property& prop, const SearchLimits& limits, Clock::time_point start,
                       const Symmetry* symmetry) {
-  Outcome out{{prop.name, prop.origin, Verdict::Unknown, {}}, 0, 0, true, {}, false, {}};
+  Outcome out{{prop.name, prop.origin, Verdict::Unknown, {}}, 0, 0, true, {}, false, {}, {}};
   Buchi ba;
   try {
     ba = buildBuchi(ir::Ltl::unary(ir::Ltl::Kind::Not, prop.formula));
@@ -415,11 +485,22 @@ Outcome checkProperty(const CompiledModel& cm, const ir::Property& prop, const S
   out.states = product.size();
   out.transitions = product.edgeCount();
   if (!out.whole) return out;
-  FairCycleSearch search(cm, ba, product);
+  // A settling world constrains each robot's sensed conditions on its own, which a quotient does not
+  // keep apart (robots of one orbit may settle differently): the quotient is searched without that
+  // constraint, which only adds runs, so that no cycle there proves the property; a cycle there is
+  // looked for again on the whole product, where the constraint applies.
+  FairCycleSearch search(cm, ba, product, prop.settled && symmetry == nullptr);
   std::vector<std::uint32_t> cycle = search.find();
   if (cycle.empty()) {
     out.property.verdict = Verdict::Proven;
     return out;
+  }
+  if (symmetry != nullptr && prop.settled) {
+    Outcome concrete = checkProperty(cm, prop, limits, start, nullptr);
+    concrete.states += out.states;
+    concrete.transitions += out.transitions;
+    concrete.reduced = true;
+    return concrete;
   }
   if (symmetry != nullptr) {
     Outcome concrete = checkProperty(cm, prop, limits, start, nullptr);
@@ -436,7 +517,7 @@ Outcome checkProperty(const CompiledModel& cm, const ir::Property& prop, const S
     return out;
   }
   std::uint32_t entry = *std::min_element(cycle.begin(), cycle.end());  // breadth-first: the shortest way in
-  Trace t = lasso(cm, product, entry, fairLoop(cm, ba, product, search, cycle, entry));
+  Trace t = lasso(cm, product, entry, fairLoop(ba, product, search, cycle, entry));
   t.property = prop.name;
   t.kind = "lasso";
   out.property.verdict = Verdict::Violated;
@@ -444,9 +525,56 @@ Outcome checkProperty(const CompiledModel& cm, const ir::Property& prop, const S
   return out;
 }
 
+// A violation found on a slice is searched again on the whole product when that stays within
+// this many states: its lasso then has the shortest way into the loop, as without slicing.
+constexpr std::uint64_t kWholeLassoBudget = 2'000'000;
+
+// One property: on slices first (when asked, and the formula is stutter-insensitive), else, or when
+// no slice decides, on the whole product.
+Outcome decide(const CompiledModel& cm, std::size_t k, const SearchLimits& limits, const LivenessOptions& options,
+               Clock::time_point start, const Symmetry* symmetry) {
+  const ir::Property& prop = cm.model().properties[k];
+  if (!options.slicing || usesNext(prop.formula)) {
+    Outcome o = checkProperty(cm, prop, limits, start, symmetry);
+    o.method.states = o.states;
+    return o;
+  }
+  detail::SlicedOutcome sliced = detail::checkSliced(cm, k, limits, options.sliceStates);
+  LivenessMethod method{true, sliced.keptVariables, sliced.refinements, sliced.states, {}};
+  Outcome out{sliced.property, sliced.states, sliced.transitions, true, {}, sliced.reduced, {}, method};
+  if (sliced.property.verdict == Verdict::Proven) return out;
+  if (sliced.property.verdict == Verdict::Violated) {
+    if (!options.wholeProduct) return out;
+    SearchLimits small = limits;
+    small.maxStates = std::min(limits.maxStates, kWholeLassoBudget);
+    Outcome whole = checkProperty(cm, prop, small, start, symmetry);
+    out.states += whole.states;
+    out.transitions += whole.transitions;
+    out.method.states = out.states;
+    if (whole.whole && whole.property.verdict == Verdict::Violated && whole.property.counterexample) {
+      out.property.counterexample = std::move(whole.property.counterexample);
+      out.reduced = out.reduced || whole.reduced;
+    } else if (whole.whole && whole.property.verdict == Verdict::Proven) {
+      out.note = "engines disagree: the whole product has no fair violation, a slice's lasso replays as one";
+    }
+    return out;
+  }
+  out.method.slicingGaveUp = sliced.why;
+  if (!options.wholeProduct) {
+    out.whole = false;
+    out.why = prop.name + ": " + sliced.why;
+    return out;
+  }
+  Outcome whole = checkProperty(cm, prop, limits, start, symmetry);
+  whole.states += sliced.states;
+  whole.transitions += sliced.transitions;
+  whole.method = {false, 0, 0, whole.states, sliced.why};
+  return whole;
+}
+
 }  // namespace
 
-LivenessResult checkLiveness(const ir::Model& model, const SearchLimits& limits) {
+LivenessResult checkLiveness(const ir::Model& model, const SearchLimits& limits, const LivenessOptions& options) {
   auto start = Clock::now();
   CompiledModel cm(model);
   const Symmetry symmetry = limits.symmetry ? Symmetry::find(model) : Symmetry();
@@ -462,7 +590,7 @@ LivenessResult checkLiveness(const ir::Model& model, const SearchLimits& limits)
     SearchLimits mine = limits;
     mine.maxMemoryBytes = limits.maxMemoryBytes / std::max<std::size_t>(1, workers);
     if (worker != 0) mine.onProgress = nullptr;
-    for (std::size_t k = next++; k < n; k = next++) outcomes[k] = checkProperty(cm, model.properties[k], mine, start, reduce);
+    for (std::size_t k = next++; k < n; k = next++) outcomes[k] = decide(cm, k, mine, options, start, reduce);
   };
   std::vector<std::thread> helpers;
   for (std::size_t w = 1; w < workers; ++w) helpers.emplace_back(work, w);
@@ -472,7 +600,7 @@ LivenessResult checkLiveness(const ir::Model& model, const SearchLimits& limits)
   if (workers > 1) {
     for (std::size_t k = 0; k < n; ++k) {
       if (!outcomes[k].whole && outcomes[k].why.rfind("--max-memory", 0) == 0) {
-        outcomes[k] = checkProperty(cm, model.properties[k], limits, start, reduce);
+        outcomes[k] = decide(cm, k, limits, options, start, reduce);
       }
     }
   }
@@ -486,6 +614,7 @@ LivenessResult checkLiveness(const ir::Model& model, const SearchLimits& limits)
     }
     result.properties.push_back(std::move(o.property));
     result.notes.push_back(std::move(o.note));
+    result.methods.push_back(std::move(o.method));
   }
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;

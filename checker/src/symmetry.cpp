@@ -96,7 +96,32 @@ std::string canon(const ir::Rule& r, const VarMap& map) {
   std::sort(branches.begin(), branches.end());
   std::string out = std::to_string(static_cast<int>(r.kind)) + (r.weaklyFair ? "w" : "") + (r.stronglyFair ? "s" : "") + "|" +
                     canon(r.guard, map);
+  // Where it senses, without the robot (a place in the program, the same for every robot of a type).
+  for (const ir::SensedOutcome& s : r.sensed) out += "|?" + s.point.substr(s.point.find('.') + 1) + (s.holds ? "+" : "-");
   for (const std::string& b : branches) out += "|" + b;
+  return out;
+}
+
+// Every rule's text, with the texts of the rules of its fairness group (sorted): a swap must map
+// the groups onto groups, as fairness is per group.
+std::vector<std::string> ruleTexts(const ir::Model& m, const VarMap& map) {
+  std::vector<std::string> own;
+  for (const ir::Rule& r : m.rules) own.push_back(canon(r, map));
+  std::unordered_map<std::string, std::vector<std::string>> groups;
+  for (std::size_t r = 0; r < m.rules.size(); ++r) {
+    if (!m.rules[r].fairGroup.empty()) groups[m.rules[r].fairGroup].push_back(own[r]);
+  }
+  std::unordered_map<std::string, std::string> signature;
+  for (auto& [name, texts] : groups) {
+    std::sort(texts.begin(), texts.end());
+    std::string sig = "{";
+    for (const std::string& t : texts) sig += t + ";";
+    signature[name] = sig + "}";
+  }
+  std::vector<std::string> out;
+  for (std::size_t r = 0; r < m.rules.size(); ++r) {
+    out.push_back(m.rules[r].fairGroup.empty() ? own[r] : own[r] + "|g" + signature[m.rules[r].fairGroup]);
+  }
   return out;
 }
 
@@ -110,7 +135,7 @@ struct ModelText {
 
 ModelText text(const ir::Model& m, const VarMap& map) {
   ModelText t;
-  for (const ir::Rule& r : m.rules) t.rules.push_back(canon(r, map));
+  t.rules = ruleTexts(m, map);
   std::sort(t.rules.begin(), t.rules.end());
   for (const ir::Invariant& inv : m.invariants) t.invariants.push_back(canon(inv.holds, map));
   for (const ir::Property& p : m.properties) t.properties.push_back(canon(p.formula, map));
@@ -130,7 +155,8 @@ class Finder {
     VarMap identity(m.variables.size());
     for (ir::VarId v = 0; v < identity.size(); ++v) identity[v] = v;
     original_ = text(m, identity);
-    for (std::uint32_t r = 0; r < m.rules.size(); ++r) ruleIndex_[canon(m.rules[r], identity)].push_back(r);
+    std::vector<std::string> texts = ruleTexts(m, identity);
+    for (std::uint32_t r = 0; r < m.rules.size(); ++r) ruleIndex_[texts[r]].push_back(r);
   }
 
   // What a verified swap does to the rules: rule r becomes rules[r]. Rules with the same text are
@@ -138,8 +164,9 @@ class Finder {
   std::vector<std::uint32_t> ruleMap(const VarMap& map) const {
     std::unordered_map<std::string, std::size_t> used;
     std::vector<std::uint32_t> out(m_.rules.size());
+    const std::vector<std::string> texts = ruleTexts(m_, map);
     for (std::uint32_t r = 0; r < m_.rules.size(); ++r) {
-      std::string t = canon(m_.rules[r], map);
+      const std::string& t = texts[r];
       out[r] = ruleIndex_.at(t).at(used[t]++);
     }
     return out;

@@ -72,6 +72,26 @@ void livenessVerdicts(Report& out) {
   }
 }
 
+// The LTL properties: not after a modelling error, never depth-bounded (a lasso needs the whole
+// product, or a slice's), not with --safety-only.
+void runLiveness(Report& out, const ir::Model& model, const VerifyOptions& options, const SearchLimits& limits,
+                 const LivenessOptions& liveness) {
+  LivenessResult& live = out.liveness;
+  if (model.properties.empty()) return;
+  const SearchResult& r = out.safety;
+  if (options.safetyOnly) out.livenessSkipped = "not checked: --safety-only";
+  else if (r.rangeError) out.livenessSkipped = "not checked: the model has an error";
+  else if (limits.maxDepth != UINT32_MAX) out.livenessSkipped = "not checked: --max-depth bounds safety only";
+  if (out.livenessSkipped.empty()) {
+    live = checkLiveness(model, limits, liveness);
+  } else {
+    live.complete = false;
+    live.limitReached = out.livenessSkipped;
+    for (const ir::Property& p : model.properties) live.properties.push_back({p.name, p.origin, Verdict::Unknown, {}});
+  }
+  livenessVerdicts(out);
+}
+
 void runSmt(Report& out, const ir::Model& model, const model::MissionModel* mission, const VerifyOptions& options,
             const SourceManager& sources) {
   out.engine = Engine::Smt;
@@ -137,19 +157,16 @@ void runSmt(Report& out, const ir::Model& model, const model::MissionModel* miss
     }
     out.properties.push_back(std::move(v));
   }
-  // The smt engine decides safety only.
-  for (const ir::Property& p : model.properties) {
-    PropertyVerdict v;
-    v.name = p.name;
-    v.origin = p.origin;
-    v.kind = PropertyVerdict::Kind::Liveness;
-    v.engine = "smt";
-    v.coverage = "not checked: the smt engine decides safety properties only";
-    out.properties.push_back(std::move(v));
-  }
-  bool violated = r.rangeError.has_value() || anyViolated(r.properties);
+  // The LTL properties on slices of the model, whose products are small whatever the whole state
+  // space: the explicit engine's, never its whole product (too large, or smt would not have run).
+  LivenessOptions liveness = options.liveness;
+  liveness.wholeProduct = false;
+  SearchLimits limits = options.limits;
+  limits.maxDepth = UINT32_MAX;  // BMC's depth, not the slices'
+  runLiveness(out, model, options, limits, liveness);
+  bool violated = r.rangeError.has_value() || anyViolated(r.properties) || anyViolated(out.liveness.properties);
   for (const FormationVerdict& f : out.formation) violated = violated || !f.holds();
-  bool undecided = !model.properties.empty();
+  bool undecided = !out.liveness.complete;
   for (const PropertyResult& p : r.properties) undecided = undecided || p.verdict == Verdict::Unknown;
   out.exitCode = violated ? 1 : undecided ? 3 : 0;
 }
@@ -180,21 +197,8 @@ void runExplicit(Report& out, const ir::Model& model, const model::MissionModel*
   }
   explicitSafetyVerdicts(out);
 
-  // Liveness needs the whole product: not after a modelling error, and never depth-bounded.
-  LivenessResult& live = out.liveness;
-  if (!model.properties.empty()) {
-    if (options.safetyOnly) out.livenessSkipped = "not checked: --safety-only";
-    else if (r.rangeError) out.livenessSkipped = "not checked: the model has an error";
-    else if (limits.maxDepth != UINT32_MAX) out.livenessSkipped = "not checked: --max-depth bounds safety only";
-    if (out.livenessSkipped.empty()) {
-      live = checkLiveness(model, limits);
-    } else {
-      live.complete = false;
-      live.limitReached = out.livenessSkipped;
-      for (const ir::Property& p : model.properties) live.properties.push_back({p.name, p.origin, Verdict::Unknown, {}});
-    }
-  }
-  livenessVerdicts(out);
+  runLiveness(out, model, options, limits, options.liveness);
+  const LivenessResult& live = out.liveness;
   const bool violated = r.rangeError.has_value() || anyViolated(r.properties) || anyViolated(live.properties);
   out.exitCode = violated ? 1 : r.complete && live.complete ? 0 : 3;
 }

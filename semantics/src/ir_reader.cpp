@@ -196,7 +196,7 @@ class Reader {
     } else if (isWord("property")) {
       advance();
       Property prop;
-      verdictHeader("property", prop.name, prop.origin);
+      verdictHeader("property", prop.name, prop.origin, &prop.settled);
       prop.formula = ltl();
       expect(";", "after the property");
       model_.properties.push_back(std::move(prop));
@@ -213,12 +213,13 @@ class Reader {
 
   // `NAME [@origin("...")] :` of an invariant or a property. Verdicts and JSON output are keyed by
   // name: two of one name (invariants and properties together) would be ambiguous.
-  void verdictHeader(const std::string& what, std::string& name, std::string& origin) {
+  void verdictHeader(const std::string& what, std::string& name, std::string& origin, bool* settled = nullptr) {
     const Token& nameToken = peek();
     name = declaredName(std::string(what == "invariant" ? "an " : "a ") + what + " name").first;
     if (!invariantNames_.insert(name).second) fail(nameToken, what + " '" + name + "' is declared twice");
     attributes([&](const Token& key, const std::string& value) {
       if (key.text == "origin") return origin = value, true;
+      if (key.text == "settled" && settled != nullptr) return *settled = true, true;
       return false;
     });
     expect(":", "after the " + what + " name");
@@ -341,7 +342,25 @@ class Reader {
       if (key.text == "origin") return r.origin = Origin::parse(value, r.origin.construct), true;
       if (key.text == "construct") return r.origin.construct = value, true;
       if (key.text == "label") return r.label = value, true;
-      if (key.text == "fair") return r.weaklyFair = true, true;
+      if (key.text == "fair") return r.weaklyFair = true, r.fairGroup = value, true;
+      if (key.text == "senses") {
+        // "POINT=1 POINT=0 ...": the sensed conditions the step decides, and how.
+        std::string word;
+        for (char c : value + " ") {
+          if (c != ' ') {
+            word += c;
+            continue;
+          }
+          if (word.empty()) continue;
+          const std::size_t eq = word.rfind('=');
+          if (eq == std::string::npos || eq == 0 || eq + 2 != word.size() || (word[eq + 1] != '0' && word[eq + 1] != '1')) {
+            fail(key, "'" + word + "' in @senses is not POINT=0 or POINT=1");
+          }
+          r.sensed.push_back({word.substr(0, eq), word[eq + 1] == '1'});
+          word.clear();
+        }
+        return true;
+      }
       if (key.text == "strongly_fair") return r.weaklyFair = r.stronglyFair = true, true;
       if (key.text == "kind") {
         auto kind = kindFromName(value);

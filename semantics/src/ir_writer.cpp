@@ -209,7 +209,13 @@ std::string toText(const Model& m) {
     if (!r.origin.construct.empty()) out << " @construct(" << quoted(r.origin.construct) << ')';
     if (!r.label.empty()) out << " @label(" << quoted(r.label) << ')';
     if (r.stronglyFair) out << " @strongly_fair";
-    else if (r.weaklyFair) out << " @fair";
+    else if (r.weaklyFair && r.fairGroup.empty()) out << " @fair";
+    else if (r.weaklyFair) out << " @fair(" << (isPlainName(r.fairGroup, true) ? r.fairGroup : quoted(r.fairGroup)) << ')';
+    if (!r.sensed.empty()) {
+      std::string senses;
+      for (const SensedOutcome& s : r.sensed) senses += (senses.empty() ? "" : " ") + s.point + (s.holds ? "=1" : "=0");
+      out << " @senses(" << quoted(senses) << ')';
+    }
     out << " :\n  " << toText(m, r.guard) << " ->";
     for (std::size_t b = 0; b < r.branches.size(); ++b) {
       const Branch& branch = r.branches[b];
@@ -232,9 +238,10 @@ std::string toText(const Model& m) {
   }
   if (!m.invariants.empty()) out << '\n';
   // `keyword NAME [@origin(...)] : `, the start of an invariant or a property.
-  auto header = [&](const char* keyword, const std::string& name, const std::string& origin) {
+  auto header = [&](const char* keyword, const std::string& name, const std::string& origin, bool settled = false) {
     out << keyword << ' ' << (isPlainName(name, true) ? name : quoted(name));
     if (!origin.empty()) out << " @origin(" << quoted(origin) << ')';
+    if (settled) out << " @settled";
     out << " : ";
   };
   for (const Invariant& inv : m.invariants) {
@@ -244,7 +251,7 @@ std::string toText(const Model& m) {
   if (m.validEnd) out << "valid_end : " << toText(m, *m.validEnd) << ";\n";
   if (!m.properties.empty()) out << '\n';
   for (const Property& p : m.properties) {
-    header("property", p.name, p.origin);
+    header("property", p.name, p.origin, p.settled);
     out << toText(m, p.formula) << ";\n";
   }
   return out.str();

@@ -347,6 +347,53 @@ std::optional<Expr> Translator::condition(Index robot, const model::Cond& c) con
   return std::nullopt;  // ordering symbols means nothing
 }
 
+std::string Translator::sensedText(const model::Cond& c, bool& negated) const {
+  using K = model::Cond::Kind;
+  auto exprText = [&](const model::Expr& e) -> std::string {
+    switch (e.kind) {
+      case model::Expr::Kind::Int: return std::to_string(e.intValue);
+      case model::Expr::Kind::Number: return std::to_string(e.numberValue);
+      case model::Expr::Kind::Bool: return e.intValue != 0 ? "true" : "false";
+      case model::Expr::Kind::Value: return (e.owner < m_.teams.size() ? m_.teams[e.owner].name + "." : std::string()) + e.var;
+      default: return e.text;
+    }
+  };
+  switch (c.kind) {
+    case K::Not: {
+      std::string inner = sensedText(*c.left, negated);
+      negated = !negated;
+      return inner;
+    }
+    case K::And:
+    case K::Or: {
+      bool l = false, r = false;
+      std::string a = sensedText(*c.left, l), b = sensedText(*c.right, r);
+      return "(" + std::string(l ? "!" : "") + a + (c.kind == K::And ? "&&" : "||") + (r ? "!" : "") + b + ")";
+    }
+    case K::Test: return exprText(c.lhs);
+    case K::Compare: break;
+  }
+  // The value on the left; then <, <= and == are the positive forms.
+  const bool swapped = c.lhs.kind != model::Expr::Kind::Value && c.rhs.kind == model::Expr::Kind::Value;
+  const model::Expr& left = swapped ? c.rhs : c.lhs;
+  const model::Expr& right = swapped ? c.lhs : c.rhs;
+  model::RelOp op = c.op;
+  if (swapped) {
+    op = op == model::RelOp::Lt ? model::RelOp::Gt : op == model::RelOp::Gt ? model::RelOp::Lt
+       : op == model::RelOp::Le ? model::RelOp::Ge : op == model::RelOp::Ge ? model::RelOp::Le : op;
+  }
+  const char* spelling = "==";
+  switch (op) {
+    case model::RelOp::Lt: spelling = "<"; break;
+    case model::RelOp::Le: spelling = "<="; break;
+    case model::RelOp::Eq: spelling = "=="; break;
+    case model::RelOp::Ge: spelling = "<", negated = !negated; break;
+    case model::RelOp::Gt: spelling = "<=", negated = !negated; break;
+    case model::RelOp::Ne: spelling = "==", negated = !negated; break;
+  }
+  return exprText(left) + spelling + exprText(right);
+}
+
 void Translator::programRules(Index robot, std::size_t planIndex) {
   const PlanProgram& prog = programs_[m_.robots[robot].team][planIndex];
   for (std::size_t i = 1; i < prog.code.size(); ++i) {
@@ -403,7 +450,12 @@ void Translator::finish(Index robot, std::size_t planIndex, std::size_t start, s
   std::string label;
   for (const std::string& w : path.words) label += (label.empty() ? "" : ", ") + w;
   rule.label = label.empty() ? "continues " + m_.services[first.service].name : label;
+  // The robot does not stop: of the steps it may take from this control point, one is taken in
+  // the end. Which one, where a sensed condition decides, is the environment's choice: per step,
+  // fairness would force every outcome of a sensor that is read again and again.
   rule.weaklyFair = true;
+  rule.fairGroup = m_.robots[robot].name + "." + prog.plan + "." + std::to_string(start);
+  rule.sensed = std::move(path.sensed);
   addRule(std::move(rule), std::move(meaning));
 }
 
@@ -443,6 +495,12 @@ void Translator::walk(Index robot, std::size_t planIndex, std::size_t at, Path p
       } else {
         yes.words.push_back(in.kind == Instr::Kind::Branch ? "senses: condition holds" : "senses: repeat");
         no.words.push_back(in.kind == Instr::Kind::Branch ? "senses: condition fails" : "senses: stop repeating");
+        // What is sensed: the robot, and the condition, the same wherever the robot senses it (a
+        // settling world gives it one value); a negated comparison is its positive one, failing.
+        bool negated = false;
+        const std::string point = m_.robots[robot].name + "." + sensedText(*in.cond, negated);
+        yes.sensed.push_back({point, !negated});
+        no.sensed.push_back({point, negated});
       }
       walk(robot, planIndex, repeat ? in.alt : in.next, std::move(yes), start, depth + 1);
       walk(robot, planIndex, repeat ? in.next : in.alt, std::move(no), start, depth + 1);

@@ -212,15 +212,19 @@ void Translator::livenessProperties() {
     for (Index t = 0; t < m_.teams.size(); ++t) {
       const std::vector<Index>& robots = m_.teams[t].robots;
       if (robots.size() < 2 || m_.teams[t].modes.size() < 2 || !vars_[robots.front()].mode) continue;
-      // Again and again, the live robots of the team are all in one mode. (A team whose robots react
-      // to their own sensing at different times may fail this for ever; the lasso shows how.)
+      // Again and again, the live robots of the team are all in one mode, once the world they sense
+      // settles: an environment that keeps changing its mind (an operator switching remote control
+      // on and off for ever) can keep any team of robots that sense for themselves apart, which
+      // says nothing of the mission. A split that lasts while the world is quiet (a lost event, say)
+      // is what this finds; the lasso shows how.
       std::vector<Expr> someMode;
       for (std::size_t k = 0; k < m_.teams[t].modes.size(); ++k) {
         std::vector<Expr> all;
         for (Index r : robots) all.push_back(Expr::binary(Op::Or, lnot(alive(r)), eq(Expr::var(*vars_[r].mode), static_cast<std::int32_t>(k))));
         someMode.push_back(ir::conjunction(std::move(all)));
       }
-      out_.properties.push_back({"mode_agreement[" + m_.teams[t].name + "]", "", alwaysEventually(ir::disjunction(std::move(someMode)))});
+      out_.properties.push_back(
+          {"mode_agreement[" + m_.teams[t].name + "]", "", alwaysEventually(ir::disjunction(std::move(someMode))), true});
     }
   }
   if (wants("knowledge_convergence")) {

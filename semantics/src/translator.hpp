@@ -58,11 +58,15 @@ class Translator {
     std::vector<lowering::Action> actions;
     std::vector<lowering::Guard> guards;
     std::vector<lowering::Effect> effects;
+    std::vector<ir::SensedOutcome> sensed;
   };
 
   void assumptions();
   void variables();
   void programRules(Index robot, std::size_t planIndex);
+  // A sensed condition as text, the same for every place it is written: `negated` flips when the
+  // text is of its negation (x >= 1 is !(x < 1)).
+  [[nodiscard]] std::string sensedText(const model::Cond& c, bool& negated) const;
   void walk(Index robot, std::size_t planIndex, std::size_t at, Path path, std::size_t start, int depth);
   void finish(Index robot, std::size_t planIndex, std::size_t start, std::size_t target, Path path);
   void effect(Index robot, std::size_t planIndex, const Instr& in, Path& path, std::vector<Path>& out);

@@ -13,10 +13,13 @@
 namespace semo::checker {
 namespace {
 
-std::vector<Verdict> verdicts(const ir::Model& m, bool symmetry, std::uint32_t* reduced = nullptr) {
+// The whole product's verdicts (the engine under test here); slicing must agree with them.
+std::vector<Verdict> verdicts(const ir::Model& m, bool symmetry, std::uint32_t* reduced = nullptr, bool slicing = false) {
   SearchLimits limits;
   limits.symmetry = symmetry;
-  LivenessResult r = checkLiveness(m, limits);
+  LivenessOptions options;
+  options.slicing = slicing;
+  LivenessResult r = checkLiveness(m, limits, options);
   EXPECT_TRUE(r.complete) << r.limitReached;
   std::vector<Verdict> out;
   for (std::size_t k = 0; k < r.properties.size(); ++k) {
@@ -27,6 +30,9 @@ std::vector<Verdict> verdicts(const ir::Model& m, bool symmetry, std::uint32_t* 
     }
   }
   if (reduced != nullptr) *reduced = r.reducedProperties;
+  if (!slicing) {
+    EXPECT_EQ(verdicts(m, symmetry, nullptr, true), out) << "slicing disagrees";
+  }
   return out;
 }
 

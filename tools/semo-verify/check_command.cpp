@@ -58,6 +58,7 @@ checker::VerifyOptions verifyOptions(const CheckOptions& options) {
   v.limits.maxMemoryBytes = options.maxMemoryMiB << 20;
   v.limits.maxDepth = options.maxDepth;
   v.limits.symmetry = options.symmetry;
+  v.liveness.slicing = options.slicing;
   v.limits.threads = options.threads != 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
   v.safetyOnly = options.safetyOnly;
   v.smt.induction = v.smt.ic3 = !options.bmcOnly;

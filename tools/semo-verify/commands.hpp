@@ -51,6 +51,7 @@ struct CheckOptions {
   std::uint64_t maxStates = 50'000'000;
   std::uint32_t maxDepth = UINT32_MAX;
   bool symmetry = true;
+  bool slicing = true;
   bool safetyOnly = false;
   unsigned threads = 0;  // 0: one per core
   std::uint64_t maxMemoryMiB = 8192;

@@ -48,6 +48,8 @@ int main(int argc, char** argv) {
                     "Explore only paths of at most this many steps (bounded search: exit 3 unless nothing lies beyond)");
     cmd->add_flag_callback("--no-symmetry", [&check] { check.symmetry = false; },
                            "Store every state, not one per ordering of interchangeable robots (both searches)");
+    cmd->add_flag_callback("--no-slicing", [&check] { check.slicing = false; },
+                           "Decide each LTL property on the product of the whole model, not on slices of it refined by counterexamples");
     cmd->add_option("--threads", check.threads, "Threads for the searches (default: one per core; the results do not depend on it)")
         ->check(CLI::Range(1u, 256u));
     cmd->add_flag("--safety-only", check.safetyOnly, "Check the invariants and deadlock freedom only, not the LTL properties");

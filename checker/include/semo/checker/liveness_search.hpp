@@ -21,9 +21,19 @@
 
 namespace semo::checker {
 
+// How a property's verdict was reached.
+struct LivenessMethod {
+  bool sliced = false;            // on a slice of the model (slicing.hpp), else on the whole product
+  std::size_t keptVariables = 0;  // sliced: the variables of the deciding slice
+  std::uint32_t refinements = 0;  // sliced: slices tried before it
+  std::uint64_t states = 0;       // product states searched for this property (all slices, any fallback)
+  std::string slicingGaveUp;      // why no slice decided, when the whole product was searched after them
+};
+
 struct LivenessResult {
   std::vector<PropertyResult> properties;  // Model::properties in order
   std::vector<std::string> notes;          // per property: what its verdict needs said, or empty
+  std::vector<LivenessMethod> methods;     // per property
   std::uint64_t states = 0;       // product states, summed over the properties
   std::uint64_t transitions = 0;  // product transitions, summed
   std::uint32_t reducedProperties = 0;  // searched up to symmetry (SearchLimits::symmetry)
@@ -32,9 +42,20 @@ struct LivenessResult {
   double seconds = 0;
 };
 
+struct LivenessOptions {
+  // Decide each property without `next` on slices of the model first, refined by counterexamples
+  // (sliced_liveness.cpp); a lasso is always one of the whole model.
+  bool slicing = true;
+  // When no slice decides, search the product of the whole model (within the limits).
+  bool wholeProduct = true;
+  // A slice whose product grows past this many states is given up (refining it further would only
+  // grow it): the whole product is searched instead, if it may be.
+  std::uint64_t sliceStates = 5'000'000;
+};
+
 // Each property has its own product; up to limits.threads of them are searched at once, each
 // within limits.maxStates and an equal share of limits.maxMemoryBytes (one that outgrows its share
 // is searched again afterwards, alone, with the whole budget).
-LivenessResult checkLiveness(const ir::Model& model, const SearchLimits& limits);
+LivenessResult checkLiveness(const ir::Model& model, const SearchLimits& limits, const LivenessOptions& options = {});
 
 }  // namespace semo::checker

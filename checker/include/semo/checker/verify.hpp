@@ -32,6 +32,7 @@ struct VerifyOptions {
   Engine engine = Engine::Explicit;
   SearchLimits limits;      // the explicit engine (limits.maxDepth: a bounded search; with smt: BMC's K)
   bool safetyOnly = false;  // leave the LTL properties unchecked
+  LivenessOptions liveness; // slicing; with the smt engine the whole product is never searched
   SmtOptions smt;           // the smt engine (smt.maxDepth is set from limits.maxDepth when that is bounded)
   std::optional<int> crashOverride;  // --crash N: the budget group formation is decided for (smt)
   bool taskGraphs = false;  // generate and analyse every robot's task graph (needs the mission)

@@ -80,6 +80,14 @@ struct Origin {
   bool operator==(const Origin&) const = default;
 };
 
+// One sensed condition decided by a step: where it is sensed (a robot, and the place in its
+// program), and whether it held.
+struct SensedOutcome {
+  std::string point;
+  bool holds = true;
+  bool operator==(const SensedOutcome&) const = default;
+};
+
 struct Rule {
   std::string name;
   std::int32_t robot = kNoRobot;
@@ -90,6 +98,15 @@ struct Rule {
   std::vector<Branch> branches;
   bool weaklyFair = false;    // for liveness: a rule enabled for ever is taken eventually
   bool stronglyFair = false;  // a rule enabled again and again is taken again and again (fair loss)
+  // Weakly fair rules of one non-empty group share their fairness: while some rule of the group is
+  // enabled for ever, some rule of it is taken again and again. The steps a robot may take from one
+  // control point form a group, so that a robot does not stop, while which way a sensed condition
+  // goes stays the environment's choice (specs/ir.md, "Fairness groups").
+  std::string fairGroup;
+  // The sensed conditions this step decided, and how (a sensed condition is the environment's:
+  // either outcome is possible). A property checked on a settling world (Property::settled) looks
+  // only at runs on which, from some point on, each of them is always decided the same way.
+  std::vector<SensedOutcome> sensed;
 };
 
 struct Invariant {
@@ -117,6 +134,9 @@ struct Property {
   std::string name;
   std::string origin;
   Ltl formula;
+  // Checked on the runs on which every sensed condition (Rule::sensed), at each place a robot
+  // senses it, is from some point on always decided the same way: once the world settles.
+  bool settled = false;
 };
 
 struct Model {

@@ -1,0 +1,45 @@
+#pragma once
+// Property-directed slicing: the model seen only through the variables a liveness property needs.
+//
+// A slice keeps a set V of variables (always those the property reads) and over-approximates the
+// rest away (specs/ir.md, "Slicing"):
+// - a rule that assigns no variable of V is left out: its steps change nothing the slice sees;
+// - a guard that reads variables outside V is weakened to what V alone can tell (a condition on a
+//   removed variable may hold or not), and the rule's fairness group loses its fairness, since the
+//   slice cannot tell whether it stays enabled; so does a group with a rule left out, whose steps
+//   the slice does not see taken;
+// - an assignment to a variable of V whose new value reads removed variables becomes a choice
+//   among the values it may take (the branches of a conditional, or the variable's whole range).
+// Every fair run of the model, seen through V, is then a fair run of the slice (up to stuttering),
+// so a property without `next` that holds on the slice holds on the model. A violation on the
+// slice may not be real; sliced_liveness.cpp rebuilds it on the model, or refines V.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "semo/semantics/ir.hpp"
+
+namespace semo::checker {
+
+struct Slice {
+  ir::Model model;                    // the kept variables, the rules that assign them, one property
+  std::vector<ir::VarId> variables;   // slice variable i is model variable variables[i]
+  std::vector<std::uint32_t> rules;   // slice rule j comes from model rule rules[j]
+  std::vector<char> exactGuard;       // per slice rule: its guard reads only kept variables
+  std::vector<char> exactUpdates;     // per slice rule: every kept variable's new value reads only kept ones
+  std::size_t leftOut = 0;            // model rules that assign no kept variable
+  std::size_t fairnessDropped = 0;    // fair model rules kept without their fairness
+  bool tooCoarse = false;             // an update had too many possible values to enumerate
+  std::vector<ir::VarId> coarseReads; // then, the removed variables it read (to keep next time)
+};
+
+// Marks in `mark` (one entry per model variable) every variable `e` reads.
+void markVariablesRead(const ir::Expr& e, std::vector<char>& mark);
+void markVariablesRead(const ir::Ltl& f, std::vector<char>& mark);
+bool usesNext(const ir::Ltl& f);
+
+// The slice of `model` for its property `property` (an index into Model::properties) keeping the
+// variables marked in `keep` (one entry per model variable; the property's own are added).
+Slice sliceModel(const ir::Model& model, std::size_t property, std::vector<char> keep);
+
+}  // namespace semo::checker

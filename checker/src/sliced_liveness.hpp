@@ -1,0 +1,26 @@
+#pragma once
+// A liveness property decided on slices of the model (slicing.hpp), refined until a slice proves
+// it, or a lasso found on a slice is rebuilt on the whole model (counterexample-guided abstraction
+// refinement): see sliced_liveness.cpp.
+#include <cstdint>
+#include <string>
+
+#include "semo/checker/compiled_model.hpp"
+#include "semo/checker/explicit_search.hpp"
+
+namespace semo::checker::detail {
+
+struct SlicedOutcome {
+  PropertyResult property;        // proven, violated with a lasso of the whole model, or unknown
+  std::uint64_t states = 0, transitions = 0;  // the slices' products, summed over the refinements
+  std::size_t keptVariables = 0;  // of the slice that decided
+  std::uint32_t refinements = 0;  // slices tried before it
+  bool reduced = false;           // the deciding slice was searched up to symmetry
+  std::string why;                // when unknown: why no slice decided
+};
+
+// Each slice's product is searched within `sliceStates` states (and limits.maxStates): a slice
+// that grows past it leaves the property to the whole product, if the caller searches it.
+SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const SearchLimits& limits, std::uint64_t sliceStates);
+
+}  // namespace semo::checker::detail

@@ -1,0 +1,295 @@
+// Property-directed slicing (checker/slicing.hpp, sliced_liveness.cpp), fairness groups and the
+// settling world (specs/ir.md): the slice's abstraction, the semantics of groups and of @settled on
+// hand-made models, the independent lasso check, and random models on which the sliced search, the
+// whole product and the product up to symmetry must give the same verdicts, every lasso passing the
+// independent check.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <sstream>
+
+#include "ir_support.hpp"
+#include "semo/checker/compiled_model.hpp"
+#include "semo/checker/lasso_check.hpp"
+#include "semo/checker/liveness_search.hpp"
+#include "semo/checker/slicing.hpp"
+
+namespace semo::checker {
+namespace {
+
+LivenessResult run(const ir::Model& m, bool slicing, bool symmetry = false) {
+  SearchLimits limits;
+  limits.symmetry = symmetry;
+  LivenessOptions options;
+  options.slicing = slicing;
+  return checkLiveness(m, limits, options);
+}
+
+Verdict verdict(const std::string& text, bool slicing = true, LivenessResult* out = nullptr) {
+  LivenessResult r = run(test::parseIr(text), slicing);
+  EXPECT_TRUE(r.complete) << r.limitReached;
+  if (out != nullptr) *out = r;
+  return r.properties.at(0).verdict;
+}
+
+// --- the abstraction ---------------------------------------------------------------------------
+
+TEST(Slicing, GuardsWeakenAndTheirFairnessGoesNewValuesBecomeChoices) {
+  ir::Model m = test::parseIr(
+      "semo-ir 1;\nvar a : 0..3 = 0;\nvar b : 0..2 = 0;\nvar c : bool = false;\n"
+      "rule step @fair : a < 3 && b == 1 -> a' = a + 1;\n"              // guard reads b: weakened, unfair
+      "rule copy @fair : a == 0 -> a' = c ? 2 : 1;\n"                   // new value reads c: two outcomes
+      "rule other @fair : b < 2 -> b' = b + 1;\n"                       // assigns no kept variable: left out
+      "rule exact @fair : a == 3 -> a' = 0;\n"                          // exact: keeps its fairness
+      "property p : always eventually {a == 3};\n");
+  std::vector<char> keep(m.variables.size(), 0);
+  Slice s = sliceModel(m, 0, keep);
+  ASSERT_EQ(s.variables.size(), 1u);  // a, the only variable the property reads
+  EXPECT_EQ(s.leftOut, 1u);
+  ASSERT_EQ(s.model.rules.size(), 3u);
+  EXPECT_EQ(s.model.rules[0].name, "step");
+  EXPECT_FALSE(s.model.rules[0].weaklyFair);
+  EXPECT_FALSE(s.exactGuard[0]);
+  EXPECT_EQ(s.model.rules[1].name, "copy");
+  EXPECT_TRUE(s.model.rules[1].weaklyFair);  // its guard is exact; only its update is not
+  EXPECT_EQ(s.model.rules[1].branches.size(), 2u);
+  EXPECT_FALSE(s.exactUpdates[1]);
+  EXPECT_TRUE(s.model.rules[2].weaklyFair);
+  EXPECT_EQ(s.fairnessDropped, 1u);
+}
+
+TEST(Slicing, AGroupKeepsItsFairnessOnlyWhenTheSliceSeesEveryRuleOfIt) {
+  ir::Model m = test::parseIr(
+      "semo-ir 1;\nvar pc : 0..1 = 0;\nvar x : bool = false;\nvar y : bool = false;\n"
+      "rule go @fair(g) : pc == 0 -> pc' = 1;\n"
+      "rule look @fair(g) : pc == 0 -> y' = true;\n"  // assigns only y: left out, so g is unfair
+      "property p : eventually {pc == 1};\n");
+  Slice s = sliceModel(m, 0, std::vector<char>(m.variables.size(), 0));
+  ASSERT_EQ(s.model.rules.size(), 1u);
+  EXPECT_FALSE(s.model.rules[0].weaklyFair);
+  // Kept whole, the group is fair again.
+  Slice whole = sliceModel(m, 0, std::vector<char>(m.variables.size(), 1));
+  EXPECT_TRUE(whole.model.rules[0].weaklyFair && whole.model.rules[1].weaklyFair);
+  // The verdict is the same either way: the robot may take `look` for ever.
+  EXPECT_EQ(verdict(ir::toText(m), true), Verdict::Violated);
+  EXPECT_EQ(verdict(ir::toText(m), false), Verdict::Violated);
+}
+
+// --- fairness groups and the settling world ----------------------------------------------------
+
+// A sensor read again and again at a point the robot does not leave: per rule, fairness forces the
+// outcome "it held" in the end; as one group, the robot keeps reading, and may read "no" for ever.
+TEST(FairnessGroups, ASensorReadAgainAndAgainIsNotForcedToReportEveryOutcome) {
+  auto model = [](const std::string& fair) {
+    return "semo-ir 1;\nvar seen : bool = false;\n"
+           "rule holds " + fair + " @senses(\"r.dark=1\") : !seen -> seen' = true;\n"
+           "rule fails " + fair + " @senses(\"r.dark=0\") : !seen -> skip;\n"
+           "property p : eventually {seen};\n";
+  };
+  for (bool slicing : {false, true}) {
+    EXPECT_EQ(verdict(model("@fair"), slicing), Verdict::Proven) << slicing;
+    LivenessResult r;
+    EXPECT_EQ(verdict(model("@fair(r.look)"), slicing, &r), Verdict::Violated) << slicing;
+    const Trace& t = *r.properties[0].counterexample;
+    ASSERT_EQ(t.steps.size(), 1u);
+    EXPECT_EQ(t.loopStart, 0u);
+  }
+}
+
+// A robot at a point where its only way on is enabled in every other state: per rule nothing is
+// owed (neither rule stays enabled); as a group, the robot must move on.
+TEST(FairnessGroups, ARobotWhoseWayOnAlternatesStillMovesOn) {
+  const std::string text =
+      "semo-ir 1;\nvar tick : bool = false;\nvar pc : 0..1 = 0;\n"
+      "rule flip @fair : true -> tick' = !tick;\n"
+      "rule on_even GROUP : pc == 0 && !tick -> pc' = 1;\n"
+      "rule on_odd GROUP : pc == 0 && tick -> pc' = 1;\n"
+      "property p : eventually {pc == 1};\n";
+  auto with = [&](const std::string& group) {
+    std::string t = text;
+    for (std::size_t at = t.find("GROUP"); at != std::string::npos; at = t.find("GROUP")) t.replace(at, 5, group);
+    return t;
+  };
+  EXPECT_EQ(verdict(with("@fair"), false), Verdict::Violated);
+  EXPECT_EQ(verdict(with("@fair(r.pc0)"), false), Verdict::Proven);
+  EXPECT_EQ(verdict(with("@fair(r.pc0)"), true), Verdict::Proven);
+}
+
+// An operator switching a robot in and out of manual control: the two never agree while it keeps
+// switching; on a settling world (the command keeps its value) they do.
+TEST(SettlingWorld, ALoopThatDecidesAConditionBothWaysIsNotASettledRun) {
+  auto model = [](const std::string& settled) {
+    return "semo-ir 1;\nvar a : 0..1 = 0;\nvar b : 0..1 = 0;\n"
+           "rule a_manual @fair(a.sense) @senses(\"a.manual=1\") : a == 0 -> a' = 1;\n"
+           "rule a_auto @fair(a.sense) @senses(\"a.manual=0\") : a == 1 -> a' = 0;\n"
+           "rule a_stay @fair(a.sense) @senses(\"a.manual=0\") : a == 0 -> skip;\n"
+           "rule b_follow @fair : b != a -> b' = a;\n"
+           "property p " + settled + " : always eventually {a == b && a == 0};\n";
+  };
+  // Unsettled, a goes 1 -> 0 -> 1 ... while b, one step behind, catches up only at 1: a lasso.
+  LivenessResult r;
+  EXPECT_EQ(verdict(model(""), false, &r), Verdict::Violated);
+  // Settled: manual for good cannot last (at a == 1 the robot's only way on decides "auto"), and
+  // auto for good leaves a at 0, where b follows: every settled run agrees at 0 again and again.
+  EXPECT_EQ(verdict(model("@settled"), false), Verdict::Proven);
+  EXPECT_EQ(verdict(model("@settled"), true), Verdict::Proven);
+  // The unsettled lasso is a fair run, but not one of a settling world.
+  ir::Model settled = test::parseIr(model("@settled"));
+  LassoCheck c = checkLasso(settled, *r.properties[0].counterexample, settled.properties[0]);
+  EXPECT_TRUE(c.valid);
+  EXPECT_TRUE(c.unfairGroups.empty());
+  EXPECT_FALSE(c.unsettled.empty());
+  EXPECT_FALSE(c.counterexample());
+}
+
+// --- the independent lasso check ---------------------------------------------------------------
+
+TEST(LassoCheck, LtlOnUltimatelyPeriodicWords) {
+  // Positions 0 1 2 3, then back to 1: x = 0 1 2 1 1 2 1 ...
+  const std::vector<int> x{0, 1, 2, 1};
+  auto holds = [&](const std::string& formula) {
+    ir::Model m = test::parseIr("semo-ir 1;\nvar x : 0..2 = 0;\nproperty p : " + formula + ";\n");
+    return ltlOnLasso(m.properties[0].formula, x.size(), 1, [&](const ir::Expr& e, std::size_t i) {
+      Program p(e);
+      Value v = x[i];
+      return p.eval(&v) != 0;
+    });
+  };
+  EXPECT_TRUE(holds("always eventually {x == 2}"));
+  EXPECT_FALSE(holds("eventually always {x == 1}"));
+  EXPECT_TRUE(holds("{x == 0} until {x == 1}"));
+  EXPECT_FALSE(holds("{x == 0} until {x == 2}"));
+  EXPECT_TRUE(holds("next {x == 1}"));
+  EXPECT_TRUE(holds("{x == 2} release {x >= 0}"));
+  EXPECT_FALSE(holds("{false} release {x <= 1}"));
+  EXPECT_TRUE(holds("always ({x == 2} => next {x == 1})"));
+}
+
+TEST(LassoCheck, RefusesWhatIsNotAFairViolatingLasso) {
+  ir::Model m = test::parseIr(
+      "semo-ir 1;\nvar c : 0..2 = 0;\nrule inc @fair : c < 2 -> c' = c + 1;\nrule reset : c == 2 -> c' = 0;\n"
+      "rule idle : true -> skip;\nproperty p : eventually {c == 2};\n");
+  Trace t;
+  t.kind = "lasso";
+  t.steps.push_back({2, 0, {}});  // idle for ever while inc stays enabled: unfair
+  t.loopStart = 0;
+  LassoCheck unfair = checkLasso(m, t, m.properties[0]);
+  EXPECT_TRUE(unfair.valid);
+  EXPECT_EQ(unfair.unfairGroups.size(), 1u);
+  EXPECT_FALSE(unfair.counterexample());
+  t.steps = {{0, 0, {}}};  // inc once, and call it a loop: it does not come back
+  EXPECT_FALSE(checkLasso(m, t, m.properties[0]).valid);
+  t.steps = {{0, 0, {}}, {0, 0, {}}, {1, 0, {}}};  // 0 1 2 0 ...: fair, but c reaches 2
+  t.loopStart = 0;
+  LassoCheck satisfied = checkLasso(m, t, m.properties[0]);
+  EXPECT_TRUE(satisfied.valid && satisfied.unfairGroups.empty());
+  EXPECT_FALSE(satisfied.violates);
+  t.steps = {{1, 0, {}}};  // reset is not enabled in the initial state
+  EXPECT_FALSE(checkLasso(m, t, m.properties[0]).valid);
+}
+
+// --- random models: the sliced search, the whole product and its quotient agree ------------------
+
+// Robots with a program counter, a mode and a flag, talking through a shared slot; steps grouped per
+// program counter, some deciding sensed conditions; losses and environment steps; properties over a
+// robot or two, some on a settling world.
+class RandomModel {
+ public:
+  explicit RandomModel(std::uint32_t seed) : rng_(seed) {}
+
+  std::string text() {
+    const int robots = pick(2, 3);
+    std::ostringstream out;
+    out << "semo-ir 1;\nrobots";
+    for (int i = 0; i < robots; ++i) out << " r" << i;
+    out << ";\nvar slot : 0..2 = 0;\n";
+    for (int i = 0; i < robots; ++i) {
+      out << "var r" << i << ".pc : 0..2 = 0 @robot(r" << i << ");\nvar r" << i << ".mode : 0..1 = 0 @robot(r" << i
+          << ");\nvar r" << i << ".flag : bool = false @robot(r" << i << ");\n";
+    }
+    int rule = 0;
+    for (int i = 0; i < robots; ++i) {
+      const std::string r = "r" + std::to_string(i);
+      const int steps = pick(3, 6);
+      for (int k = 0; k < steps; ++k) {
+        const int from = pick(0, 2), to = pick(0, 2);
+        const int fairness = pick(0, 5);  // mostly grouped per program counter
+        std::string attrs = fairness == 0 ? "" : fairness == 1 ? " @fair" : fairness == 2 ? " @strongly_fair"
+                                                                                          : " @fair(" + r + ".at" + std::to_string(from) + ")";
+        if (pick(0, 2) == 0) attrs += " @senses(\"" + r + ".c" + std::to_string(pick(0, 1)) + "=" + std::to_string(pick(0, 1)) + "\")";
+        std::string guard = r + ".pc == " + std::to_string(from);
+        switch (pick(0, 3)) {
+          case 0: guard += " && slot == " + std::to_string(pick(0, 2)); break;
+          case 1: guard += " && " + r + ".mode == " + std::to_string(pick(0, 1)); break;
+          case 2: guard += " && r" + std::to_string((i + 1) % robots) + ".flag"; break;
+          default: break;
+        }
+        std::string update = r + ".pc' = " + std::to_string(to);
+        switch (pick(0, 4)) {
+          case 0: update += ", slot' = " + std::to_string(pick(0, 2)); break;
+          case 1: update += ", " + r + ".mode' = slot == 2 ? 1 : " + r + ".mode"; break;
+          case 2: update += ", r" + std::to_string((i + 1) % robots) + ".flag' = true"; break;
+          case 3: update += ", " + r + ".flag' = !" + r + ".flag"; break;
+          default: break;
+        }
+        out << "rule s" << rule++ << " @robot(" << r << ")" << attrs << " : " << guard << " -> " << update << ";\n";
+      }
+    }
+    if (pick(0, 1) == 0) out << "rule lose @kind(loss) : slot != 0 -> slot' = 0;\n";
+    if (pick(0, 1) == 0) out << "rule env @kind(environment) : r0.mode == 0 -> r0.mode' = 1;\n";
+    auto atom = [&] {
+      const std::string r = "r" + std::to_string(pick(0, robots - 1));
+      switch (pick(0, 3)) {
+        case 0: return "{" + r + ".pc == " + std::to_string(pick(0, 2)) + "}";
+        case 1: return "{" + r + ".mode == " + std::to_string(pick(0, 1)) + "}";
+        case 2: return std::string("{r0.mode == r1.mode}");
+        default: return "{slot == " + std::to_string(pick(0, 2)) + "}";
+      }
+    };
+    const char* shapes[] = {"eventually A", "always eventually A", "always (A => eventually B)", "eventually always A", "A until B"};
+    for (int p = 0; p < 3; ++p) {
+      std::string f = shapes[pick(0, 4)];
+      for (std::size_t at = f.find('A'); at != std::string::npos; at = f.find('A')) f.replace(at, 1, atom());
+      for (std::size_t at = f.find('B'); at != std::string::npos; at = f.find('B')) f.replace(at, 1, atom());
+      out << "property p" << p << (pick(0, 2) == 0 ? " @settled" : "") << " : " << f << ";\n";
+    }
+    return out.str();
+  }
+
+ private:
+  int pick(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng_); }
+  std::mt19937 rng_;
+};
+
+TEST(Slicing, RandomModelsGetTheSameVerdictsAndCheckedLassos) {
+  int proven = 0, violated = 0, refined = 0;
+  for (std::uint32_t seed = 1; seed <= 400; ++seed) {
+    const std::string text = RandomModel(seed).text();
+    SCOPED_TRACE("seed " + std::to_string(seed) + ":\n" + text);
+    ir::Model m = test::parseIr(text);
+    LivenessResult whole = run(m, false), sliced = run(m, true), quotient = run(m, false, true);
+    ASSERT_TRUE(whole.complete && sliced.complete && quotient.complete);
+    for (std::size_t k = 0; k < m.properties.size(); ++k) {
+      SCOPED_TRACE(m.properties[k].name);
+      EXPECT_EQ(sliced.properties[k].verdict, whole.properties[k].verdict);
+      EXPECT_EQ(quotient.properties[k].verdict, whole.properties[k].verdict);
+      EXPECT_NE(whole.properties[k].verdict, Verdict::Unknown);
+      for (const LivenessResult* r : {&whole, &sliced, &quotient}) {
+        if (r->properties[k].verdict != Verdict::Violated) continue;
+        ASSERT_TRUE(r->properties[k].counterexample.has_value()) << r->notes[k];
+        LassoCheck c = checkLasso(m, *r->properties[k].counterexample, m.properties[k]);
+        EXPECT_TRUE(c.counterexample()) << c.why << " unfair " << c.unfairGroups.size() << " unsettled " << c.unsettled.size();
+      }
+      proven += whole.properties[k].verdict == Verdict::Proven ? 1 : 0;
+      violated += whole.properties[k].verdict == Verdict::Violated ? 1 : 0;
+      refined += sliced.methods[k].refinements > 0 ? 1 : 0;
+    }
+  }
+  // The generator is not degenerate: both verdicts, and slices that had to be refined.
+  EXPECT_GT(proven, 100);
+  EXPECT_GT(violated, 100);
+  EXPECT_GT(refined, 20);
+}
+
+}  // namespace
+}  // namespace semo::checker
