@@ -9,28 +9,13 @@ namespace semo::checker {
 
 using model::Index;
 
-namespace {
-
-// The robots a group needs: the largest `min-robots` of the group services its body calls (through
-// composite services too), at least one. `depth` guards against composites that call each other.
-std::int64_t largestMinimum(const model::MissionModel& m, const std::vector<model::Stmt>& body, int depth) {
-  std::int64_t most = 1;
-  if (depth > 32) return most;
-  for (const model::Stmt& s : body) {
-    if (s.kind == model::Stmt::Kind::CallGroupService) {
-      if (s.strategyService != model::kNone) most = std::max(most, m.serviceOf(s).minRobots);
-    }
-    if (s.kind == model::Stmt::Kind::CallComposite && s.composite < m.services.size()) {
-      most = std::max(most, largestMinimum(m, m.services[s.composite].body, depth + 1));
-    }
-    most = std::max({most, largestMinimum(m, s.thenBody, depth + 1), largestMinimum(m, s.elseBody, depth + 1)});
+std::string formationCoverage(const FormationVerdict& v) {
+  std::string out = "every crash set of up to " + std::to_string(v.budget) + " robots leaves it formable; it tolerates " + std::to_string(v.tolerated);
+  if (v.vacuousAtBudget()) {
+    out += "; with all " + std::to_string(v.teamSize) + " robots of its team crashed nobody is left to form it: that case holds vacuously";
   }
-  return most;
+  return out;
 }
-
-std::int64_t minimumSize(const model::MissionModel& m, const model::GroupArm& arm) { return largestMinimum(m, arm.body, 0); }
-
-}  // namespace
 
 std::vector<FormationVerdict> checkGroupFormation(const model::MissionModel& m, const std::vector<std::int64_t>* crashBudget) {
   std::vector<FormationVerdict> out;
@@ -47,6 +32,7 @@ std::vector<FormationVerdict> checkGroupFormation(const model::MissionModel& m, 
     v.blockIndex = b;
     v.block = m.services[block.service].name + (block.isLeaderBlock ? " (leader block)" : (arms.size() == 1 ? " (block of 1 group)" : " (block of " + std::to_string(arms.size()) + " groups)"));
     v.budget = block.team < budgets.size() ? budgets[block.team] : 0;
+    v.teamSize = static_cast<std::int64_t>(robots.size());
 
     // Robots wanted by the same arms are interchangeable here: one count per such class (how many
     // of it crash) keeps the problem as small as the number of classes, whatever the team's size.
@@ -79,9 +65,12 @@ std::vector<FormationVerdict> checkGroupFormation(const model::MissionModel& m, 
       crashedOf.push_back(crashed);
     }
     for (std::size_t a = 0; a < arms.size(); ++a) {
-      armsChosen = armsChosen + z3::ite(chosen[static_cast<int>(a)], ctx.int_val(static_cast<int>(minimumSize(m, *arms[a]))), ctx.int_val(0));
+      armsChosen = armsChosen + z3::ite(chosen[static_cast<int>(a)], ctx.int_val(static_cast<int>(m.armDemand(*arms[a]))), ctx.int_val(0));
     }
     opt.add(liveCandidates < armsChosen);
+    // Some robot of the team is left to run the block: with the whole team crashed, nobody forms
+    // it, and the translation's invariant holds (specs/semantics.md), vacuously.
+    opt.add(crashes < static_cast<int>(robots.size()));
     opt.minimize(crashes);
     if (opt.check() == z3::sat) {
       z3::model model = opt.get_model();

@@ -153,7 +153,7 @@ void runSmt(Report& out, const ir::Model& model, const model::MissionModel* miss
     v.verdict = f.holds() ? Verdict::Proven : Verdict::Violated;
     if (f.holds()) {
       v.proof = ProofKind::Z3Formation;
-      v.coverage = "every crash set of up to " + std::to_string(f.budget) + " robots leaves it formable; it tolerates " + std::to_string(f.tolerated);
+      v.coverage = formationCoverage(f);
     }
     out.properties.push_back(std::move(v));
   }

@@ -9,6 +9,25 @@ namespace semo {
 
 namespace model {
 
+namespace {
+
+std::int64_t largestMinimum(const MissionModel& m, const std::vector<Stmt>& body, int depth) {
+  std::int64_t most = 1;
+  if (depth > 32) return most;  // composites that call each other are refused by elaboration
+  for (const Stmt& s : body) {
+    if (s.kind == Stmt::Kind::CallGroupService && s.strategyService != kNone) most = std::max(most, m.serviceOf(s).minRobots);
+    if (s.kind == Stmt::Kind::CallComposite && s.composite < m.services.size()) {
+      most = std::max(most, largestMinimum(m, m.services[s.composite].body, depth + 1));
+    }
+    most = std::max({most, largestMinimum(m, s.thenBody, depth + 1), largestMinimum(m, s.elseBody, depth + 1)});
+  }
+  return most;
+}
+
+}  // namespace
+
+std::int64_t MissionModel::armDemand(const GroupArm& arm) const { return largestMinimum(*this, arm.body, 0); }
+
 Index MissionModel::findTeam(const std::string& name) const {
   for (Index i = 0; i < teams.size(); ++i) {
     if (teams[i].name == name) return i;

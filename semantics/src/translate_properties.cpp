@@ -80,6 +80,26 @@ std::optional<Expr> Translator::stateFormula(const model::Ltl& f, std::string& w
   return ir::conjunction(std::move(each));
 }
 
+// The live candidates of `arms`, together, are at least the robots they need.
+Expr Translator::enoughLive(const std::vector<const model::GroupArm*>& arms) const {
+  std::vector<Index> candidates;
+  std::int64_t demand = 0;
+  for (const model::GroupArm* arm : arms) {
+    demand += m_.armDemand(*arm);
+    for (Index c : arm->candidates) {
+      if (std::find(candidates.begin(), candidates.end(), c) == candidates.end()) candidates.push_back(c);
+    }
+  }
+  if (demand == 1) {  // the common case, kept as the plain disjunction it always was
+    std::vector<Expr> live;
+    for (Index c : candidates) live.push_back(alive(c));
+    return ir::disjunction(std::move(live));
+  }
+  Expr count = Expr::constant(0);
+  for (Index c : candidates) count = Expr::binary(Op::Add, std::move(count), Expr::ite(alive(c), Expr::constant(1), Expr::constant(0)));
+  return Expr::binary(Op::Ge, std::move(count), Expr::constant(static_cast<std::int32_t>(demand)));
+}
+
 void Translator::invariants() {
   if (wants("group_formation")) {
     for (Index t = 0; t < programs_.size(); ++t) {
@@ -94,16 +114,38 @@ void Translator::invariants() {
             inside.push_back(ir::conjunction({alive(r), Expr::binary(Op::Gt, pc, Expr::constant(static_cast<std::int32_t>(range.first))),
                                               Expr::binary(Op::Le, pc, Expr::constant(static_cast<std::int32_t>(range.last)))}));
           }
+          // Each arm, and each set of two or more arms, has at least as many live candidates
+          // (together: a robot joins one arm) as its robots need (Hall's condition; the crash-set
+          // analysis of checker/group_formation.cpp decides the same, for every crash set).
+          std::vector<const model::GroupArm*> arms;
           for (const model::GroupArm& arm : block.arms) {
-            if (arm.kind == model::GroupArm::Kind::Others) continue;
-            std::vector<Expr> live;
-            for (Index c : arm.candidates) live.push_back(alive(c));
+            if (arm.kind != model::GroupArm::Kind::Others) arms.push_back(&arm);
+          }
+          const std::size_t subsets = arms.size() <= kHallArms ? (std::size_t{1} << arms.size()) : 0;
+          auto armText = [&](const model::GroupArm& arm) {
+            return std::string(arm.kind == model::GroupArm::Kind::Leader ? "leader" : "group") + " (" + arm.names.front() +
+                   (arm.names.size() > 1 ? ", ..." : "") + ")";
+          };
+          for (std::size_t a = 0; a < arms.size(); ++a) {
             ir::Invariant inv;
-            std::string what = arm.kind == model::GroupArm::Kind::Leader ? "leader" : "group";
-            inv.name = "group_formation[" + m_.services[block.service].name + " " + what + " (" + arm.names.front() +
-                       (arm.names.size() > 1 ? ", ..." : "") + ")]";
-            inv.origin = origin(arm.at, "").text();
-            inv.holds = Expr::binary(Op::Implies, ir::disjunction(inside), ir::disjunction(std::move(live)));
+            inv.name = "group_formation[" + m_.services[block.service].name + " " + armText(*arms[a]) + "]";
+            inv.origin = origin(arms[a]->at, "").text();
+            inv.holds = Expr::binary(Op::Implies, ir::disjunction(inside), enoughLive({arms[a]}));
+            out_.invariants.push_back(std::move(inv));
+          }
+          for (std::size_t set = 1; set < subsets; ++set) {
+            if ((set & (set - 1)) == 0) continue;  // one arm: above
+            std::vector<const model::GroupArm*> chosen;
+            std::string names;
+            for (std::size_t a = 0; a < arms.size(); ++a) {
+              if ((set >> a & 1) == 0) continue;
+              chosen.push_back(arms[a]);
+              names += (names.empty() ? "" : " and ") + armText(*arms[a]);
+            }
+            ir::Invariant inv;
+            inv.name = "group_formation[" + m_.services[block.service].name + " " + names + "]";
+            inv.origin = origin(block.at, "").text();
+            inv.holds = Expr::binary(Op::Implies, ir::disjunction(inside), enoughLive(chosen));
             out_.invariants.push_back(std::move(inv));
           }
         }

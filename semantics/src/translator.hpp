@@ -64,6 +64,11 @@ class Translator {
   void assumptions();
   void variables();
   void programRules(Index robot, std::size_t planIndex);
+  // Group formation: the live candidates of `arms`, together, are at least the robots they need.
+  [[nodiscard]] Expr enoughLive(const std::vector<const model::GroupArm*>& arms) const;
+  // Blocks of up to this many arms get an invariant per set of arms (Hall's condition); larger ones
+  // one per arm only.
+  static constexpr std::size_t kHallArms = 6;
   // A sensed condition as text, the same for every place it is written: `negated` flips when the
   // text is of its negation (x >= 1 is !(x < 1)).
   [[nodiscard]] std::string sensedText(const model::Cond& c, bool& negated) const;

@@ -42,7 +42,7 @@ void formationLines(std::string& out, const checker::Report& r) {
     const checker::FormationVerdict& v = r.formation[b];
     out += "  " + std::string(v.holds() ? "proven" : "VIOLATED") + "  " + v.block + " at " + r.formationOrigins[b];
     if (v.holds()) {
-      out += "  (every crash set of up to " + std::to_string(v.budget) + " robots leaves it formable; it tolerates " + std::to_string(v.tolerated) + ")";
+      out += "  (" + checker::formationCoverage(v) + ")";
     } else if (v.breakingSet.empty()) {
       out += "  (cannot be formed even with every robot alive: " + joined(v.unmetArms) + " cannot all get a robot of their own)";
     } else {

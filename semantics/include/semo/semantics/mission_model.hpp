@@ -227,6 +227,10 @@ struct MissionModel {
   [[nodiscard]] const strategy::Implementation* implementationOf(const Stmt& call, Index robot) const {
     return serviceOf(call).implementationFor(robots.at(robot).type);
   }
+  // How many robots of its own an arm needs for its block to form: one, or the largest `min-robots`
+  // of the group services its body calls (through composite services too). What group formation
+  // means, for the translation's invariants and for the crash-set analysis alike.
+  [[nodiscard]] std::int64_t armDemand(const GroupArm& arm) const;
 };
 
 }  // namespace semo::model

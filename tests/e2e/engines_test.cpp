@@ -1,0 +1,130 @@
+// Engines never disagree: every example, seeded defect (and twin) and hand-written IR model is
+// checked by every engine that applies (explicit with and without symmetry and slicing, smt, auto),
+// through the real CLI's JSON, and a property two engines both decide gets the same verdict from
+// both. Group formation for every crash set (smt) must agree with the explicit engine's invariants
+// of the same block. And every property is decided by some engine, but for the documented cases.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "cli_run.hpp"
+
+namespace semo::e2e {
+namespace {
+
+struct Input {
+  std::string name;
+  std::string args;  // the model: a mission with its strategy, or an .ir file
+  bool mission = true;
+};
+
+std::vector<Input> inputs() {
+  std::vector<Input> out;
+  for (const char* e : {"chase/chase", "deployment/deployment", "swarm/swarm3", "swarm/swarm10", "patrol/patrol"}) {
+    const std::string path = e;
+    const std::string folder = path.substr(0, path.find('/'));
+    out.push_back({"example_" + path.substr(path.find('/') + 1),
+                   "specs/examples/" + path + ".semo --strategy specs/examples/" + folder + "/strategy.xml"});
+  }
+  for (const auto& entry : fs::directory_iterator(SEMO_SOURCE_DIR "/specs/defects")) {
+    if (entry.path().extension() != ".semo") continue;
+    const std::string stem = entry.path().stem().string();
+    out.push_back({"defect_" + stem, "specs/defects/" + stem + ".semo --strategy specs/defects/strategy.xml"});
+  }
+  out.push_back({"defect_leader_timeout_short", "specs/defects/leader_timeout.semo --strategy specs/defects/leader_timeout_short.xml"});
+  out.push_back({"defect_leader_timeout_ok", "specs/defects/leader_timeout.semo --strategy specs/defects/leader_timeout_ok.xml"});
+  for (const auto& entry : fs::directory_iterator(SEMO_SOURCE_DIR "/specs/defects/liveness")) {
+    if (entry.path().extension() != ".semo") continue;
+    const std::string stem = entry.path().stem().string();
+    out.push_back({"liveness_" + stem, "specs/defects/liveness/" + stem + ".semo --strategy specs/defects/liveness/strategy.xml"});
+  }
+  out.push_back({"liveness_jammed_recall_reliable", "specs/defects/liveness/jammed_recall.semo --strategy specs/defects/liveness/jammed_recall_reliable.xml"});
+  out.push_back({"liveness_stuck_gossip_reliable", "specs/defects/liveness/stuck_gossip.semo --strategy specs/defects/liveness/stuck_gossip_reliable.xml"});
+  out.push_back({"liveness_orphaned_relay_formation", "specs/defects/liveness/orphaned_relay.semo --strategy specs/defects/liveness/orphaned_relay_formation.xml"});
+  out.push_back({"liveness_orphaned_relay_timeout", "specs/defects/liveness/orphaned_relay.semo --strategy specs/defects/liveness/orphaned_relay_timeout.xml"});
+  for (const auto& entry : fs::directory_iterator(SEMO_SOURCE_DIR "/tests/e2e/ir")) {
+    if (entry.path().extension() != ".ir") continue;
+    out.push_back({"ir_" + entry.path().stem().string(), "tests/e2e/ir/" + entry.path().filename().string(), false});
+  }
+  std::sort(out.begin(), out.end(), [](const Input& a, const Input& b) { return a.name < b.name; });
+  return out;
+}
+
+// The engines, as `check` options. The explicit searches are bounded, so that a model beyond them
+// gives "unknown" rather than a long wait; a bound never makes a verdict wrong.
+const std::vector<std::pair<std::string, std::string>> kEngines = {
+    {"explicit", "--max-states 3000000"},
+    {"explicit, no symmetry, no slicing", "--max-states 3000000 --no-symmetry --no-slicing"},
+    {"explicit, symmetry only", "--max-states 3000000 --no-slicing"},
+    {"explicit, slicing only", "--max-states 3000000 --no-symmetry"},
+    {"smt", "--engine smt --max-states 3000000"},
+    {"auto", "--engine auto --max-states 3000000"},
+};
+
+struct Verdicts {
+  std::map<std::string, std::string> properties;  // name -> "proven" | "VIOLATED" | "unknown"
+  std::map<std::string, std::string> blocks;      // smt: group formation per block (service name)
+};
+
+Verdicts run(const Input& in, const std::string& options, const fs::path& dir) {
+  CliRun r = verify("check " + in.args + " " + options + " --json", dir);
+  Verdicts v;
+  EXPECT_TRUE(r.exit == 0 || r.exit == 1 || r.exit == 3) << r.exit << r.err;
+  nlohmann::json j = nlohmann::json::parse(r.out, nullptr, false);
+  if (j.is_discarded()) {
+    ADD_FAILURE() << "not JSON: " << r.out.substr(0, 400) << r.err;
+    return v;
+  }
+  for (const auto& p : j["properties"]) v.properties[p["name"].get<std::string>()] = p["verdict"].get<std::string>();
+  if (j.contains("groupFormation")) {
+    for (const auto& b : j["groupFormation"]) {
+      const std::string block = b["block"].get<std::string>();
+      v.blocks[block.substr(0, block.find(" ("))] = b["verdict"].get<std::string>();
+    }
+  }
+  return v;
+}
+
+bool decided(const std::string& verdict) { return verdict == "proven" || verdict == "VIOLATED"; }
+
+class EnginesAgree : public ::testing::TestWithParam<Input> {};
+
+TEST_P(EnginesAgree, OnEveryVerdictBothDecide) {
+  const Input& in = GetParam();
+  const fs::path dir = workDir("engines_" + in.name);
+  std::vector<Verdicts> all;
+  for (const auto& [name, options] : kEngines) all.push_back(run(in, options, dir));
+  std::map<std::string, std::pair<std::string, std::string>> first;  // property -> (engine, verdict)
+  for (std::size_t e = 0; e < kEngines.size(); ++e) {
+    for (const auto& [property, verdict] : all[e].properties) {
+      if (!decided(verdict)) continue;
+      auto [it, added] = first.try_emplace(property, kEngines[e].first, verdict);
+      EXPECT_EQ(verdict, it->second.second) << property << ": " << kEngines[e].first << " says " << verdict << ", " << it->second.first
+                                            << " says " << it->second.second;
+    }
+  }
+  // Group formation per block (smt, every crash set) against the explicit engine's invariants of the
+  // block's arms: violated exactly when one of them is.
+  for (const auto& [block, verdict] : all[4].blocks) {
+    bool anyViolated = false, allProven = true, anyInvariant = false;
+    for (const auto& [property, v] : all[0].properties) {
+      if (property.rfind("group_formation[" + block + " ", 0) != 0) continue;
+      anyInvariant = true;
+      anyViolated = anyViolated || v == "VIOLATED";
+      allProven = allProven && v == "proven";
+    }
+    if (!anyInvariant || (!anyViolated && !allProven)) continue;
+    EXPECT_EQ(verdict, anyViolated ? "VIOLATED" : "proven") << "block " << block;
+  }
+  // Every property decided by some engine, but scouting's mode agreement (specs/examples/README.md).
+  for (const auto& [property, verdict] : all[0].properties) {
+    EXPECT_TRUE(first.count(property) != 0) << property << " decided by no engine";
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, EnginesAgree, ::testing::ValuesIn(inputs()),
+                         [](const ::testing::TestParamInfo<Input>& info) { return info.param.name; });
+
+}  // namespace
+}  // namespace semo::e2e
