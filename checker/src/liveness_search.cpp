@@ -590,7 +590,11 @@ LivenessResult checkLiveness(const ir::Model& model, const SearchLimits& limits,
     SearchLimits mine = limits;
     mine.maxMemoryBytes = limits.maxMemoryBytes / std::max<std::size_t>(1, workers);
     if (worker != 0) mine.onProgress = nullptr;
-    for (std::size_t k = next++; k < n; k = next++) outcomes[k] = decide(cm, k, mine, options, start, reduce);
+    for (std::size_t k = next++; k < n; k = next++) {
+      const auto begin = Clock::now();
+      outcomes[k] = decide(cm, k, mine, options, start, reduce);
+      outcomes[k].method.seconds = std::chrono::duration<double>(Clock::now() - begin).count();
+    }
   };
   std::vector<std::thread> helpers;
   for (std::size_t w = 1; w < workers; ++w) helpers.emplace_back(work, w);
@@ -600,7 +604,9 @@ LivenessResult checkLiveness(const ir::Model& model, const SearchLimits& limits,
   if (workers > 1) {
     for (std::size_t k = 0; k < n; ++k) {
       if (!outcomes[k].whole && outcomes[k].why.rfind("--max-memory", 0) == 0) {
+        const auto begin = Clock::now();
         outcomes[k] = decide(cm, k, limits, options, start, reduce);
+        outcomes[k].method.seconds = std::chrono::duration<double>(Clock::now() - begin).count();
       }
     }
   }

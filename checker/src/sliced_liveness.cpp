@@ -17,9 +17,6 @@
 #include <deque>
 #include <optional>
 #include <queue>
-#include <fstream>
-#include <regex>
-#include "semo/semantics/ir_text.hpp"
 #include <unordered_map>
 
 #include "semo/checker/fairness.hpp"
@@ -418,10 +415,6 @@ SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const
   SlicedOutcome out;
   out.property = {prop.name, prop.origin, Verdict::Unknown, {}};
   std::vector<char> keep(model.variables.size(), 0);
-  if (const char* pattern = std::getenv("SEMO_SLICE_KEEP")) {  // TEMPORARY: experiments
-    std::regex re(pattern);
-    for (ir::VarId v = 0; v < keep.size(); ++v) keep[v] = std::regex_search(model.variables[v].name, re) ? 1 : 0;
-  }
   SearchLimits sub = limits;
   sub.threads = 1;
   sub.maxStates = std::min(limits.maxStates, sliceStates);
@@ -436,10 +429,8 @@ SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const
       for (ir::VarId v : slice.variables) keep[v] = 1;
       continue;
     }
-    if (const char* dump = std::getenv("SEMO_SLICE_DUMP")) {  // TEMPORARY: experiments
-      std::ofstream(std::string(dump) + "." + std::to_string(property) + "." + std::to_string(round) + ".ir") << ir::toText(slice.model);
-    }
     LivenessResult r = checkLiveness(slice.model, sub, plain);
+    // A developer's trace of the refinement (checker/README.md), on stderr.
     if (std::getenv("SEMO_DEBUG_SLICING") != nullptr) {
       std::string names;
       for (ir::VarId v : slice.variables) names += " " + model.variables[v].name;

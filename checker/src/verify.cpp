@@ -49,24 +49,39 @@ void explicitSafetyVerdicts(Report& out) {
   }
 }
 
+// Where a liveness verdict was searched for: "on a slice of 8 of 64 variables, 558 product
+// states" or "on the whole model, 1204 product states".
+std::string livenessSearchText(const LivenessMethod& m, std::size_t variables) {
+  const std::string states = std::to_string(m.states) + " product states";
+  if (m.sliced) return "on a slice of " + std::to_string(m.keptVariables) + " of " + std::to_string(variables) + " variables, " + states;
+  return "on the whole model, " + states;
+}
+
 // The explicit engine's verdicts on the LTL properties (after the others).
-void livenessVerdicts(Report& out) {
+void livenessVerdicts(Report& out, const ir::Model& model) {
   const LivenessResult& live = out.liveness;
   for (std::size_t k = 0; k < live.properties.size(); ++k) {
     const PropertyResult& p = live.properties[k];
     PropertyVerdict v = verdictOf(p, PropertyVerdict::Kind::Liveness, "explicit");
     const std::string note = k < live.notes.size() ? live.notes[k] : std::string();
+    const bool searched = k < live.methods.size() && out.livenessSkipped.empty();
+    const std::string where = searched ? livenessSearchText(live.methods[k], model.variables.size()) : std::string();
+    // A settled property assumes that each sensed condition is in the end answered one way.
+    const bool settled = k < model.properties.size() && model.properties[k].settled;
+    const std::string world = settled ? " once what the robots sense settles" : "";
     if (p.verdict == Verdict::Proven) {
       v.proof = ProofKind::CompleteSearch;
-      v.coverage = "every fair run, under the assumptions above";
+      v.coverage = "every fair run" + world + ", under the assumptions above; searched " + where;
     } else if (p.verdict == Verdict::Unknown && out.livenessSkipped.empty()) {
       v.coverage = "no violation found in the part explored; the search was not complete";
+      if (searched && !live.methods[k].slicingGaveUp.empty()) v.coverage += " (slices: " + live.methods[k].slicingGaveUp + ")";
     } else if (!note.empty()) {
       v.coverage = note;
     } else if (p.counterexample) {
       const Trace& t = *p.counterexample;
       v.coverage = "lasso of " + steps(t.steps.size()) + " below, " +
-                   (t.loopStart >= t.steps.size() ? std::string("then it stays for ever") : "loop from step " + std::to_string(t.loopStart + 1));
+                   (t.loopStart >= t.steps.size() ? std::string("then it stays for ever") : "loop from step " + std::to_string(t.loopStart + 1)) +
+                   (settled ? ", in which what the robots sense settles" : "");
     }
     out.properties.push_back(std::move(v));
   }
@@ -89,7 +104,7 @@ void runLiveness(Report& out, const ir::Model& model, const VerifyOptions& optio
     live.limitReached = out.livenessSkipped;
     for (const ir::Property& p : model.properties) live.properties.push_back({p.name, p.origin, Verdict::Unknown, {}});
   }
-  livenessVerdicts(out);
+  livenessVerdicts(out, model);
 }
 
 void runSmt(Report& out, const ir::Model& model, const model::MissionModel* mission, const VerifyOptions& options,
@@ -187,12 +202,14 @@ void runExplicit(Report& out, const ir::Model& model, const model::MissionModel*
     const bool found = r.rangeError.has_value() || anyViolated(r.properties);
     if (!r.complete && !found && !r.depthBounded) {
       out.engineReason = "the explicit search did not cover the state space within its budget of " + std::to_string(limits.maxStates) +
-                         " states (stopped after " + std::to_string(r.states) + "), so smt";
+                         " states (stopped after " + std::to_string(r.states) + "), so smt; the LTL properties on slices of the model " +
+                         "(cone of influence, refined by counterexamples), never on the whole product";
       runSmt(out, model, mission, options, sources);
       return;
     }
     out.engineReason = found ? "explicit search found a violation within its budget of " + std::to_string(kAutoStateBudget) + " states"
                              : "the state space fits the explicit engine's budget of " + std::to_string(kAutoStateBudget) + " states";
+    if (options.liveness.slicing) out.engineReason += "; the LTL properties on slices of the model first, on the whole product where no slice decides";
     limits.maxStates = options.limits.maxStates;  // the liveness products get the usual limit
   }
   explicitSafetyVerdicts(out);

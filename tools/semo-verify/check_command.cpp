@@ -95,11 +95,11 @@ int runExport(const ExportOptions& options) {
   std::unique_ptr<BuiltModel> built = buildModel(options.model);
   if (!built) return kBadInput;
   const ir::Model& model = *built->model;
-  if (options.spinBreadthFirst && options.format != "promela") {
-    std::cerr << "semo-verify: error: --spin-bfs applies to --promela only\n";
+  if ((options.spinBreadthFirst || options.spinLiveness) && options.format != "promela") {
+    std::cerr << "semo-verify: error: --spin-bfs and --spin-ltl apply to --promela only\n";
     return kBadInput;
   }
-  std::string text = options.format == "promela" ? checker::toPromela(model, {.breadthFirst = options.spinBreadthFirst})
+  std::string text = options.format == "promela" ? checker::toPromela(model, {.breadthFirst = options.spinBreadthFirst, .liveness = options.spinLiveness})
                                                  : ir::toText(model);
   if (!options.output) {
     std::cout << text;

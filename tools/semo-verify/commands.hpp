@@ -65,6 +65,7 @@ struct ExportOptions {
   ModelInput model;
   std::string format;  // "ir" or "promela"
   bool spinBreadthFirst = false;
+  bool spinLiveness = false;
   std::optional<std::string> output;
 };
 

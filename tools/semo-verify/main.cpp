@@ -95,6 +95,8 @@ int main(int argc, char** argv) {
   formats->add_flag_callback("--ir", [&] { exportOptions.format = "ir"; }, "The IR in its text form (specs/ir.md)");
   formats->add_flag_callback("--promela", [&] { exportOptions.format = "promela"; }, "Promela for SPIN, one atomic step per rule");
   formats->require_option(1);
+  exportCmd->add_flag("--spin-ltl", exportOptions.spinLiveness,
+                      "With --promela: the LTL properties as `ltl` claims under semo's fairness (pan -a -N claim), instead of the invariants");
   exportCmd->add_flag("--spin-bfs", exportOptions.spinBreadthFirst,
                                   "With --promela: no hidden variables, for pan -DBFS (then -m bounds the depth as --max-depth does)");
   exportCmd->add_option("--output,-o", exportOptions.output, "Write to this file (default: standard output)");
