@@ -179,6 +179,19 @@ class Concretizer {
     }
   }
 
+  // The variables a rule assigns, when the slice keeps none of them (so that the rule joins it).
+  void blameTargets(std::uint32_t r) {
+    const ir::Rule& rule = cm_.model().rules[r];
+    for (const ir::Branch& b : rule.branches) {
+      for (const ir::Assignment& a : b.assignments) {
+        if (kept_[a.var]) return;
+      }
+    }
+    for (const ir::Branch& b : rule.branches) {
+      for (const ir::Assignment& a : b.assignments) refine_[a.var] = 1;
+    }
+  }
+
   // Step i of the slice's lasso, from x: steps the slice does not see first (breadth-first, the
   // fewest), then the step's own rule to a state the slice sees as the lasso's next.
   bool follow(State& x, std::size_t i) {
@@ -360,7 +373,15 @@ class Concretizer {
           continue;
         }
       }
-      for (std::uint32_t r : fairness_.members[g]) blame(r, true, false);
+      // The slice must see the group to be fair to it: every member (a rule is in a slice only
+      // when it assigns a kept variable) with its exact guard.
+      if (std::getenv("SEMO_DEBUG_SLICING") != nullptr) {
+        for (std::uint32_t r : fairness_.members[g]) std::fprintf(stderr, "[slice]   neglected group member %s\n", cm_.model().rules[r].name.c_str());
+      }
+      for (std::uint32_t r : fairness_.members[g]) {
+        blame(r, true, false);
+        blameTargets(r);
+      }
     }
     if (!repaired) {
       why_ = "the rebuilt loop neglects a fair group that the slice did not see enabled";

@@ -215,13 +215,18 @@ Slice sliceModel(const ir::Model& model, std::size_t property, std::vector<char>
   out.model.assumptions = model.assumptions;
   const Abstractor abs(keep, newId);
   std::vector<char> coarse(model.variables.size(), 0);
+  // A rule is kept when it assigns a kept variable, or nothing at all: a step that changes nothing
+  // (a robot calling a service again while it waits) is a stutter of the slice too, and keeping it
+  // lets the slice see the fairness group it belongs to.
   auto assignsKept = [&](const ir::Rule& rule) {
+    bool assignsAny = false;
     for (const ir::Branch& b : rule.branches) {
       for (const ir::Assignment& a : b.assignments) {
         if (keep[a.var]) return true;
+        assignsAny = true;
       }
     }
-    return false;
+    return !assignsAny;
   };
   // A group keeps its fairness only when the slice sees every rule of it, with its exact guard:
   // else it cannot tell whether the group stays enabled, nor whether it was taken.

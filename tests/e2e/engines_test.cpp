@@ -119,7 +119,17 @@ TEST_P(EnginesAgree, OnEveryVerdictBothDecide) {
     if (!anyInvariant || (!anyViolated && !allProven)) continue;
     EXPECT_EQ(verdict, anyViolated ? "VIOLATED" : "proven") << "block " << block;
   }
-  // Every property decided by some engine, but scouting's mode agreement (specs/examples/README.md).
+  // The seeded liveness defects (and their twins) are small: every engine, with every reduction on
+  // or off, decides each of their LTL properties, so that a defect is still found with each
+  // reduction (and, by the agreement above, found the same).
+  if (in.name.rfind("liveness_", 0) == 0) {
+    for (std::size_t e = 0; e < kEngines.size(); ++e) {
+      for (const auto& [property, verdict] : all[e].properties) {
+        EXPECT_TRUE(decided(verdict)) << property << ": " << kEngines[e].first << " says " << verdict;
+      }
+    }
+  }
+  // Every property decided by some engine (scouting, which no engine decides whole, is not here).
   for (const auto& [property, verdict] : all[0].properties) {
     EXPECT_TRUE(first.count(property) != 0) << property << " decided by no engine";
   }
