@@ -168,6 +168,14 @@ class Product {
     return true;
   }
 
+  // After a limit stopped explore(): the states not expanded get no edges, so that the graph is
+  // the part explored. A fair cycle of it is one of the whole product, since whether a loop is
+  // fair and accepting depends on its own states and edges only (and an expanded state has all
+  // its edges); a frontier state, without edges, lies on no cycle.
+  void closeFrontier() {
+    while (edgeStart_.size() < store_.size() + 1) edgeStart_.push_back(edges_.size());
+  }
+
   [[nodiscard]] std::size_t size() const { return store_.size(); }
   [[nodiscard]] std::size_t edgeCount() const { return edges_.size(); }
   [[nodiscard]] std::uint64_t bytes() const {

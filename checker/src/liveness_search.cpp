@@ -484,7 +484,25 @@ Outcome checkProperty(const CompiledModel& cm, const ir::Property& prop, const S
   out.whole = product.explore(limits, start, 0, out.why);
   out.states = product.size();
   out.transitions = product.edgeCount();
-  if (!out.whole) return out;
+  if (!out.whole) {
+    // Stopped by --max-states: a fair cycle among the states expanded so far is still a real
+    // violation (closeFrontier). Not on a quotient, whose cycles need the whole orbit structure to
+    // be lifted, nor after an error or --max-memory.
+    if (symmetry != nullptr || out.why.rfind("--max-states", 0) != 0) return out;
+    product.closeFrontier();
+    FairCycleSearch partial(cm, ba, product, prop.settled);
+    std::vector<std::uint32_t> cycle = partial.find();
+    if (cycle.empty()) return out;
+    std::uint32_t entry = *std::min_element(cycle.begin(), cycle.end());
+    Trace t = lasso(cm, product, entry, fairLoop(ba, product, partial, cycle, entry));
+    t.property = prop.name;
+    t.kind = "lasso";
+    out.property.verdict = Verdict::Violated;
+    out.property.counterexample = std::move(t);
+    out.whole = true;  // decided: the rest of the product cannot undo a violation
+    out.why.clear();
+    return out;
+  }
   // A settling world constrains each robot's sensed conditions on its own, which a quotient does not
   // keep apart (robots of one orbit may settle differently): the quotient is searched without that
   // constraint, which only adds runs, so that no cycle there proves the property; a cycle there is

@@ -484,6 +484,13 @@ SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const
       return out;
     }
     if (std::getenv("SEMO_DEBUG_SLICING") != nullptr) std::fprintf(stderr, "[slice]   not rebuilt: %s\n", concretizer.why().c_str());
+    // A slice that filled its budget (its lasso found among the states explored) only grows when
+    // refined: give up rather than search ever larger slices to the budget.
+    if (r.states >= sub.maxStates) {
+      out.why = "the slice of " + std::to_string(slice.variables.size()) + " of " + std::to_string(model.variables.size()) +
+                " variables filled --max-states " + std::to_string(sub.maxStates) + " and its lasso could not be rebuilt: " + concretizer.why();
+      return out;
+    }
     bool grew = false;
     for (std::size_t v = 0; v < keep.size(); ++v) {
       if (concretizer.refine()[v] && !keep[v]) keep[v] = 1, grew = true;

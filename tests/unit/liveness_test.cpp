@@ -116,6 +116,27 @@ TEST(Liveness, FairLoopTakesEveryFairRuleThatIsAlwaysEnabled) {
   EXPECT_TRUE(tookA && tookB) << "the loop is fair to both rules";
 }
 
+TEST(Liveness, AFairCycleAmongTheStatesExploredIsAViolationEvenWhenTheSearchStops) {
+  // x may climb to 100000 (unfairly); y flips for ever from the start. The product is far beyond
+  // a budget of 1000 states, but the loop flipping y at x = 0 lies in the part explored.
+  const std::string m = "semo-ir 1;\nvar x : 0..100000 = 0;\nvar y : bool = false;\n"
+                        "rule climb : x < 100000 -> x' = x + 1;\nrule flip @fair : true -> y' = !y;\n";
+  SearchLimits small;
+  small.maxStates = 1000;
+  LivenessOptions whole;
+  whole.slicing = false;
+  LivenessResult r = checkLiveness(parse(m + "property p : eventually always {y};\n"), small, whole);
+  ASSERT_EQ(r.properties.size(), 1u);
+  EXPECT_EQ(r.properties[0].verdict, Verdict::Violated);
+  ASSERT_TRUE(r.properties[0].counterexample.has_value());
+  EXPECT_TRUE(r.complete) << "a violation is final, however much was left unexplored";
+  EXPECT_LE(r.states, 1001u);
+  // A property that holds cannot be proven on a part: unknown.
+  r = checkLiveness(parse(m + "property p : always eventually {y};\n"), small, whole);
+  EXPECT_EQ(r.properties[0].verdict, Verdict::Unknown);
+  EXPECT_FALSE(r.complete);
+}
+
 TEST(Buchi, AcceptanceSetsOnePerUntil) {
   ir::Model m = parse("semo-ir 1;\nvar x : bool;\nproperty p : always eventually {x} && eventually {!x};\n");
   Buchi b = buildBuchi(m.properties[0].formula);
