@@ -69,7 +69,7 @@ spin_por() {
     out="$(cd "$work" && timeout "$limit" ./pan -m100000000 -w26 2>&1 || true)"
     local states
     states="$(echo "$out" | sed -n 's/^ *\([0-9e.+]*\) states, stored.*/\1/p' | head -1)"
-    if echo "$out" | grep -q "errors: 0" && ! echo "$out" | grep -qE "out of memory|MEMLIM|depth too small"; then
+    if echo "$out" | grep -q "errors: 0" && ! echo "$out" | grep -qE "out of memory|MEMLIM|depth too small|Search not completed"; then
       printf -v "$variant" '%s' "$states"
     else
       printf -v "$variant" '%s' "not finished (${states:-?} stored)"
