@@ -463,8 +463,10 @@ SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const
     out.transitions += r.transitions;
     out.reduced = r.reducedProperties > 0;
     if (!r.complete) {
+      std::string limit = r.limitReached;
+      if (sliceStates < limits.maxStates && limit.rfind("--max-states", 0) == 0) limit = "--slice-states " + std::to_string(sliceStates) + " reached";
       out.why = "the slice of " + std::to_string(slice.variables.size()) + " of " + std::to_string(model.variables.size()) +
-                " variables did not decide: " + r.limitReached;
+                " variables did not decide: " + limit;
       return out;
     }
     const PropertyResult& p = r.properties.at(0);
@@ -488,7 +490,8 @@ SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const
     // refined: give up rather than search ever larger slices to the budget.
     if (r.states >= sub.maxStates) {
       out.why = "the slice of " + std::to_string(slice.variables.size()) + " of " + std::to_string(model.variables.size()) +
-                " variables filled --max-states " + std::to_string(sub.maxStates) + " and its lasso could not be rebuilt: " + concretizer.why();
+                " variables filled " + (sliceStates < limits.maxStates ? "--slice-states " : "--max-states ") +
+                std::to_string(sub.maxStates) + " and its lasso could not be rebuilt: " + concretizer.why();
       return out;
     }
     bool grew = false;
