@@ -35,9 +35,11 @@
 // cross-checked.
 #include "semo/checker/promela_export.hpp"
 
-#include "semo/checker/fairness.hpp"
+#include "promela_liveness.hpp"
+#include "promela_text.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <charconv>
 #include <cctype>
 #include <climits>
@@ -47,6 +49,9 @@
 namespace semo::checker {
 
 namespace {
+
+using detail::cat;
+using detail::commentText;
 
 using ir::Expr;
 using ir::Op;
@@ -102,19 +107,6 @@ class Names {
   std::set<std::string> used_;
 };
 
-// Comments must not end early, and must stay on their line.
-std::string commentText(const std::string& s) {
-  std::string out;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    char c = s[i];
-    if (c == '\n' || c == '\r' || c == '\t') c = ' ';
-    out += c;
-    if (c == '*' && i + 1 < s.size() && s[i + 1] == '/') out += ' ';
-    if (c == '/' && i + 1 < s.size() && s[i + 1] == '*') out += ' ';
-  }
-  return out;
-}
-
 const char* promelaType(const ir::Variable& v) {
   if (v.isBool) return "bool";
   if (v.min >= 0 && v.max <= 1) return "bit";
@@ -126,14 +118,6 @@ const char* promelaType(const ir::Variable& v) {
 std::string constant(std::int32_t v) {
   if (v == INT32_MIN) return "(-2147483647 - 1)";
   return std::to_string(v);
-}
-
-// Concatenation by appending (GCC 12 warns falsely about `"literal" + std::string&&`).
-template <typename... Parts>
-std::string cat(const Parts&... parts) {
-  std::string out;
-  (out.append(parts), ...);
-  return out;
 }
 
 bool reads(const Expr& e, ir::VarId var) {
@@ -152,7 +136,7 @@ class Writer {
     variables();
     scratch();
     process();
-    if (options_.liveness) claims();
+    if (liveness_) liveness_->claims(out_);
     return out_.str();
   }
 
@@ -221,160 +205,6 @@ class Writer {
 
   std::string guard(const Expr& e) const { return e.isTrue() ? "true" : expr(e); }
 
-  // ---- LTL claims (PromelaOptions::liveness)
-  std::string ltl(const ir::Ltl& f) const {
-    using K = ir::Ltl::Kind;
-    auto unary = [&](const char* op) { return cat(op, " (", ltl(f.args[0]), ")"); };
-    auto binary = [&](const char* op) { return cat("(", ltl(f.args[0]), ") ", op, " (", ltl(f.args[1]), ")"); };
-    switch (f.kind) {
-      case K::Atom: return cat("(", expr(f.atom), ")");
-      case K::Not: return unary("!");
-      case K::And: return binary("&&");
-      case K::Or: return binary("||");
-      case K::Implies: return binary("->");
-      case K::Next: return unary("X");
-      case K::Always: return unary("[]");
-      case K::Eventually: return unary("<>");
-      case K::Until: return binary("U");
-      case K::Release: return binary("V");
-    }
-    return "true";
-  }
-  std::string lastIn(const std::vector<std::uint32_t>& rules) const {
-    std::string out;
-    for (std::uint32_t r : rules) out += cat(out.empty() ? "" : " || ", lastVar_, " == ", std::to_string(r + 1));
-    return out.empty() ? "false" : cat("(", out, ")");
-  }
-  Expr enabledExpr(const std::vector<std::uint32_t>& rules) const {
-    std::vector<Expr> guards;
-    for (std::uint32_t r : rules) guards.push_back(m_.rules[r].guard);
-    return ir::disjunction(std::move(guards));
-  }
-  std::string enabledAny(const std::vector<std::uint32_t>& rules) const { return cat("(", expr(enabledExpr(rules)), ")"); }
-
-  void claims() {
-    out_ << "\n/* ---- LTL properties under semo's fairness (specs/ir.md): pan -a -N <claim> */\n";
-    for (const ir::Property& p : m_.properties) {
-      std::vector<std::string> assumed;
-      if (!fairFlag_.empty()) assumed.push_back(cat("[]<> ", fairFlag_));
-      if (!quietFlag_.empty()) assumed.push_back(cat("<>[] !", quietFlag_));
-      if (p.settled && !switchFlag_.empty()) assumed.push_back(cat("<>[] !", switchFlag_));
-      std::string assumption;
-      for (const std::string& a : assumed) assumption += cat(assumption.empty() ? "" : " && ", a);
-      out_ << "ltl " << claimNames_.at(static_cast<std::size_t>(&p - m_.properties.data())) << " {  /* " << commentText(p.name)
-           << " */\n  ";
-      if (assumed.empty()) {
-        out_ << ltl(p.formula) << "\n}\n";
-      } else {
-        out_ << "(" << assumption << ")\n  -> (" << ltl(p.formula) << ")\n}\n";
-      }
-    }
-  }
-
-  // semo's fairness and settling as flags the model computes at each step, so that a claim's
-  // premise is at most `[]<> semo_fair && <>[] !semo_quiet && <>[] !semo_switched`: SPIN's
-  // translation of LTL to an automaton grows exponentially with the number of conjuncts written
-  // out per group (three strongly fair groups took minutes), the model's bookkeeping only linearly.
-  // - A weakly fair group is taken infinitely often or found disabled infinitely often,
-  //   `[]<> (!enabled || taken)`, which is `<>[] enabled -> []<> taken`.
-  // - A strongly fair group (`[]<> enabled -> []<> taken`) is either enabled only finitely often or
-  //   taken infinitely often; the model guesses which at the start (`semo_busy_k`, then constant):
-  //   busy, `[]<> taken`; not busy, from some point on never enabled (`semo_quiet` marks a step
-  //   after which it is).
-  // - The `[]<>` conditions are met one after another: the phase waits at condition k until it
-  //   holds after a step, then moves on; `semo_fair` marks the step that completes a round. All hold
-  //   infinitely often exactly when rounds complete infinitely often (the usual way to turn a
-  //   generalized Büchi condition into a plain one).
-  // - A sensed condition is settled when from some point on it is decided one way only, that is,
-  //   when its answer changes finitely often: `semo_said_k` keeps its last answer and
-  //   `semo_switched` marks a step that changed one.
-  // The guess is a step before the loop that changes no variable of the model, harmless to the
-  // IR's formulas, which have no `X` and so cannot tell a repeated state.
-  void fairnessBookkeeping() {
-    const Fairness fairness = Fairness::of(m_);
-    std::vector<std::string> phaseConditions, quietConditions;
-    for (std::uint32_t g = 0; g < fairness.groups(); ++g) {
-      const std::vector<std::uint32_t>& members = fairness.members[g];
-      if (!fairness.strong[g]) {
-        phaseConditions.push_back(cat(negation(enabledExpr(members)), " || ", lastIn(members)));
-        continue;
-      }
-      const std::string busy = names_.fresh("semo_busy_" + std::to_string(g));
-      busyFlags_.push_back(busy);
-      phaseConditions.push_back(cat("!", busy, " || ", lastIn(members)));
-      quietConditions.push_back(cat("!", busy, " && ", enabledAny(members)));
-    }
-    const bool settledProperty =
-        std::any_of(m_.properties.begin(), m_.properties.end(), [](const ir::Property& p) { return p.settled; });
-    if (settledProperty) {
-      sensing_ = Sensing::in(m_);
-      for (std::size_t k = 0; k < sensing_.points; ++k) saidVars_.push_back(names_.fresh("semo_said_" + std::to_string(k)));
-      if (!saidVars_.empty()) switchFlag_ = names_.fresh("semo_switched");
-    }
-    for (const std::string& b : busyFlags_) out_ << "bool " << b << ";  /* guessed: this strongly fair group is taken for ever */\n";
-    for (const std::string& v : saidVars_) out_ << "byte " << v << " = 0;  /* a sensed condition's last answer: 1 false, 2 true */\n";
-    if (!switchFlag_.empty()) out_ << "bool " << switchFlag_ << " = 0;  /* this step changed a sensed condition's answer */\n";
-    if (!phaseConditions.empty()) {
-      phaseVar_ = names_.fresh("semo_phase");
-      fairFlag_ = names_.fresh("semo_fair");
-      out_ << (phaseConditions.size() < 255 ? "byte " : "short ") << phaseVar_ << " = 0;  /* the fairness condition waited for */\n"
-           << "bool " << fairFlag_ << " = 0;  /* this step completed a round over the " << phaseConditions.size()
-           << " fairness conditions */\n";
-    }
-    if (!quietConditions.empty()) {
-      quietFlag_ = names_.fresh("semo_quiet");
-      out_ << "bool " << quietFlag_ << " = 0;  /* a group guessed not busy is enabled */\n";
-    }
-    if (phaseConditions.empty()) {
-      out_ << "\n";
-      return;
-    }
-    bookkeeping_ = names_.fresh("semo_fairness");
-    out_ << "inline " << bookkeeping_ << "() {\n  if\n";
-    for (std::size_t k = 0; k < phaseConditions.size(); ++k) {
-      out_ << "  :: " << phaseVar_ << " == " << k << " && (" << phaseConditions[k] << ") -> " << phaseVar_ << " = " << (k + 1) << "\n";
-    }
-    out_ << "  :: else -> skip\n  fi;\n  if\n"
-         << "  :: " << phaseVar_ << " == " << phaseConditions.size() << " -> " << phaseVar_ << " = 0; " << fairFlag_ << " = 1\n"
-         << "  :: else -> " << fairFlag_ << " = 0\n  fi" << (quietFlag_.empty() ? "" : ";") << "\n";
-    if (!quietFlag_.empty()) {
-      std::string any;
-      for (const std::string& q : quietConditions) any += cat(any.empty() ? "" : " || ", "(", q, ")");
-      out_ << "  " << quietFlag_ << " = (" << any << ")\n";
-    }
-    out_ << "}\n\n";
-  }
-
-  // What a step adds to its rule's assignments: the sensed answers it gives, the rule itself, the
-  // fairness bookkeeping.
-  std::vector<std::string> livenessBookkeeping(std::uint32_t rule) const {
-    std::vector<std::string> body;
-    if (!switchFlag_.empty()) {
-      std::string changed;
-      std::vector<std::string> said;
-      if (rule < sensing_.of.size()) {
-        for (const Sensing::Decision& d : sensing_.of[rule]) {
-          const std::string& v = saidVars_[d.point];
-          const char* answer = d.holds ? "2" : "1";
-          changed += cat(changed.empty() ? "" : " || ", "(", v, " != 0 && ", v, " != ", answer, ")");
-          said.push_back(cat(v, " = ", answer));
-        }
-      }
-      body.push_back(cat(switchFlag_, " = ", changed.empty() ? "0" : cat("(", changed, ")")));
-      body.insert(body.end(), said.begin(), said.end());
-    }
-    body.push_back(cat(lastVar_, " = ", std::to_string(rule + 1)));
-    if (!bookkeeping_.empty()) body.push_back(bookkeeping_ + "()");
-    return body;
-  }
-
-  // The strongly fair groups' guess, before the loop.
-  void guessBusy() {
-    if (busyFlags_.empty()) return;
-    out_ << "  /* guess which strongly fair groups are taken for ever (the others must end up disabled) */\n";
-    for (const std::string& b : busyFlags_) out_ << "  if\n  :: " << b << " = 1\n  :: " << b << " = 0\n  fi;\n";
-  }
-
   // ---- sections
   void header() {
     out_ << "/* Promela model generated by semo (semo-verify export --promela) from the IR.\n"
@@ -440,13 +270,10 @@ class Writer {
       for (const ir::Invariant& inv : m_.invariants) invariantFlags_.push_back(names_.fresh("prop_" + inv.name));
       if (m_.validEnd) validEndFlag_ = names_.fresh("prop_deadlock_freedom");
     } else {
-      lastVar_ = names_.fresh("semo_last");
-      for (const ir::Property& p : m_.properties) claimNames_.push_back(names_.fresh("p_" + p.name));
-      const std::size_t stutter = m_.rules.size() + 1;
-      out_ << "/* ---- the rule of the last step (its index + 1; " << stutter << ": time passing; 0: none yet), for the\n"
-           << "   claims' fairness */\n"
-           << (stutter <= 255 ? "byte " : "short ") << lastVar_ << " = 0;\n";
-      fairnessBookkeeping();
+      detail::PromelaText text{[this](const Expr& e) { return expr(e); }, [this](const Expr& e) { return negation(e); },
+                               [this](const std::string& wanted) { return names_.fresh(wanted); }};
+      liveness_.emplace(m_, std::move(text));
+      liveness_->declare(out_);
     }
     for (std::size_t t = 0; t < temporaries; ++t) temporaries_.push_back(names_.fresh("semo_old" + std::to_string(t)));
     // Variables that no guard, update, invariant or valid_end reads: SPIN would leave them out of
@@ -560,7 +387,7 @@ class Writer {
 
   void process() {
     out_ << "active proctype " << processName_ << "() {\n";
-    guessBusy();
+    if (liveness_) liveness_->guess(out_);
     out_
          << "  /* `end`: a state without successors is not an error of its own"
          << (m_.validEnd ? " (the timeout option below checks valid_end)" : " (the IR has no valid_end)") << " */\n"
@@ -609,7 +436,7 @@ class Writer {
         std::vector<std::string> body = assignments(r.branches[b]);
         if (options_.liveness) {
           if (body.size() == 1 && body[0] == "skip") body.clear();
-          const std::vector<std::string> more = livenessBookkeeping(static_cast<std::uint32_t>(&r - m_.rules.data()));
+          const std::vector<std::string> more = liveness_->step(static_cast<std::uint32_t>(&r - m_.rules.data()));
           body.insert(body.end(), more.begin(), more.end());
         }
         option("d_step", guard(r.guard), body);
@@ -623,7 +450,7 @@ class Writer {
       }
       any = true;
       out_ << "  /* time passes where no fair rule is enabled */\n";
-      std::vector<std::string> body = livenessBookkeeping(static_cast<std::uint32_t>(m_.rules.size()));
+      std::vector<std::string> body = liveness_->step(static_cast<std::uint32_t>(m_.rules.size()));
       option("d_step", negation(ir::disjunction(std::move(fair))), body);
     }
     if (m_.validEnd && !options_.liveness) {
@@ -656,12 +483,7 @@ class Writer {
   std::string validEndFlag_;
   std::vector<std::string> temporaries_;
   std::string processName_;
-  std::string lastVar_;                  // liveness: the rule of the last step
-  std::vector<std::string> claimNames_;  // liveness: one `ltl` claim per property
-  // liveness: fairness and settling bookkeeping (fairnessBookkeeping)
-  std::vector<std::string> busyFlags_, saidVars_;
-  std::string phaseVar_, fairFlag_, quietFlag_, switchFlag_, bookkeeping_;
-  Sensing sensing_;
+  std::optional<detail::PromelaLiveness> liveness_;  // PromelaOptions::liveness
   std::vector<std::size_t> unread_;  // variables nothing reads
   std::string readSink_;
 };
