@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "promela_text.hpp"
+#include "semo/checker/compiled_model.hpp"
 
 namespace semo::checker::detail {
 
@@ -18,7 +19,35 @@ void PromelaLiveness::declare(std::ostream& out) {
   out << "/* ---- the rule of the last step (its index + 1; " << stutter << ": time passing; 0: none yet), for the\n"
       << "   claims' fairness */\n"
       << (stutter <= 255 ? "byte " : "short ") << lastVar_ << " = 0;\n";
+  atoms(out);
   bookkeeping(out);
+}
+
+// Each atom of the properties as a flag the model keeps (set by every step, initialised to its
+// value in the initial state), so that a claim names it: SPIN's translator rejects a formula past
+// a few thousand characters, which a knowledge_convergence over ten robots exceeds.
+void PromelaLiveness::atoms(std::ostream& out) {
+  std::vector<const ir::Expr*> found;
+  auto collect = [&](auto&& self, const ir::Ltl& f) -> void {
+    if (f.kind == ir::Ltl::Kind::Atom) found.push_back(&f.atom);
+    for (const ir::Ltl& a : f.args) self(self, a);
+  };
+  for (const ir::Property& p : m_.properties) collect(collect, p.formula);
+  std::vector<Value> initial;
+  for (const ir::Variable& v : m_.variables) initial.push_back(v.init);
+  std::string updates;
+  for (const ir::Expr* e : found) {
+    const std::string text = text_.expr(*e);
+    if (atomNames_.count(text) != 0) continue;
+    const std::string name = text_.fresh("semo_atom_" + std::to_string(atomNames_.size()));
+    atomNames_.emplace(text, name);
+    const bool holds = Program(*e).eval(initial.data()) != 0;
+    out << "bool " << name << " = " << (holds ? 1 : 0) << ";  /* an atom of the properties, as of the last step */\n";
+    updates += cat(updates.empty() ? "" : ";\n", "  ", name, " = (", text, ")");
+  }
+  if (updates.empty()) return;
+  atomsInline_ = text_.fresh("semo_atoms");
+  out << "inline " << atomsInline_ << "() {\n" << updates << "\n}\n";
 }
 
 // A formula in SPIN's LTL syntax, atoms as Promela expressions.
@@ -27,7 +56,7 @@ std::string PromelaLiveness::ltl(const ir::Ltl& f) const {
   auto unary = [&](const char* op) { return cat(op, " (", ltl(f.args[0]), ")"); };
   auto binary = [&](const char* op) { return cat("(", ltl(f.args[0]), ") ", op, " (", ltl(f.args[1]), ")"); };
   switch (f.kind) {
-    case K::Atom: return cat("(", text_.expr(f.atom), ")");
+    case K::Atom: return atomNames_.at(text_.expr(f.atom));
     case K::Not: return unary("!");
     case K::And: return binary("&&");
     case K::Or: return binary("||");
@@ -172,6 +201,7 @@ std::vector<std::string> PromelaLiveness::step(std::uint32_t rule) const {
   }
   body.push_back(cat(lastVar_, " = ", std::to_string(rule + 1)));
   if (!bookkeeping_.empty()) body.push_back(bookkeeping_ + "()");
+  if (!atomsInline_.empty()) body.push_back(atomsInline_ + "()");
   return body;
 }
 

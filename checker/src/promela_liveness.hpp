@@ -4,6 +4,7 @@
 // step adds to its assignments, the guess before the loop, and one `ltl` claim per property.
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -35,6 +36,7 @@ class PromelaLiveness {
 
  private:
   void bookkeeping(std::ostream& out);
+  void atoms(std::ostream& out);
   [[nodiscard]] std::string ltl(const ir::Ltl& f) const;
   [[nodiscard]] std::string lastIn(const std::vector<std::uint32_t>& rules) const;
   [[nodiscard]] ir::Expr enabledExpr(const std::vector<std::uint32_t>& rules) const;
@@ -47,6 +49,8 @@ class PromelaLiveness {
   std::vector<std::string> busyFlags_, saidVars_;
   std::string phaseVar_, fairFlag_, quietFlag_, switchFlag_, bookkeeping_;
   Sensing sensing_;
+  std::map<std::string, std::string> atomNames_;  // an atom's Promela text -> its flag
+  std::string atomsInline_;
 };
 
 }  // namespace semo::checker::detail

@@ -30,13 +30,18 @@ macro(spin_script_arguments script)
   endif()
 endmacro()
 
-# spin_build_pan(FLAGS...): `spin -a model.pml` and `CC -O2 FLAGS -o pan pan.c` in WORKDIR.
-function(spin_build_pan)
+# spin_translate(): `spin -a model.pml` in WORKDIR (the claims translated, pan.c written).
+function(spin_translate)
   execute_process(COMMAND "${SPIN}" -a model.pml
     WORKING_DIRECTORY "${WORKDIR}" RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT code EQUAL 0 OR out MATCHES "error" OR err MATCHES "error")
     message(FATAL_ERROR "spin -a failed (${code}):\n${out}${err}")
   endif()
+endfunction()
+
+# spin_build_pan(FLAGS...): spin_translate(), then `CC -O2 FLAGS -o pan pan.c` in WORKDIR.
+function(spin_build_pan)
+  spin_translate()
   execute_process(COMMAND "${CC}" -O2 -w ${ARGN} -o pan pan.c
     WORKING_DIRECTORY "${WORKDIR}" RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT code EQUAL 0)
