@@ -3,6 +3,7 @@
 // the liveness search (liveness_search.cpp); with symmetry, the product of the quotient, whose
 // edges remember the permutation that canonicalised their targets.
 #include <chrono>
+#include <functional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "semo/checker/buchi.hpp"
 #include "semo/checker/compiled_model.hpp"
 #include "semo/checker/explicit_search.hpp"
+#include "semo/checker/fairness.hpp"
 #include "semo/checker/symmetry.hpp"
 #include "state_store.hpp"
 
@@ -91,10 +93,31 @@ class Product {
     if (symmetry != nullptr) symmetry_ = *symmetry;  // a copy: canonicalisation keeps scratch space
   }
 
+  // From `start` instead of the model's initial state (the search of a region, sliced_liveness.cpp).
+  void startFrom(std::vector<Value> start) { start_ = std::move(start); }
+  // Expand only the states `region` accepts; the others get no edges, as after closeFrontier(): a
+  // fair cycle of what is explored is then one of the whole product.
+  void expandOnly(std::function<bool(const Value*)> region) { region_ = std::move(region); }
+
+  // Only the runs of a round-robin scheduler over the fairness groups: in each state, the first
+  // group at or after the scheduler's turn (kept in the state) that has a rule enabled takes a
+  // step, by any of its enabled rules and branches, and the turn passes to the next group; the
+  // rules that no fairness constrains (loss, crashes, the environment) may step in any state. A
+  // subset of the runs, whose interleavings it fixes: for a hunt for violations (region_lasso.hpp).
+  void roundRobin(const Fairness* fairness) { scheduler_ = fairness; }
+  // Rules never taken (per rule, 1: barred), e.g. crashes and losses in a hunt for a violation
+  // that needs none: fewer runs still.
+  void bar(std::vector<char> barred) { barred_ = std::move(barred); }
+  // Only the steps that decide each sensed condition as `world` says (per point: -1 either way).
+  void senseOnly(const Sensing* sensing, std::vector<std::int8_t> world) {
+    sensing_ = sensing;
+    world_ = std::move(world);
+  }
+
   // False when a limit stopped the exploration (then `why` says which).
   bool explore(const SearchLimits& limits, Clock::time_point start, std::uint64_t statesBefore, std::string& why) {
     const StateLayout& layout = cm_.layout();
-    std::vector<Value> values = cm_.initialValues(), next(values.size());
+    std::vector<Value> values = start_.empty() ? cm_.initialValues() : start_, next(values.size());
     std::vector<std::uint64_t> packed(layout.words() + 1);
     Permutation moved;
     if (symmetric()) symmetry_.canonicalize(values.data(), moved);
@@ -105,32 +128,59 @@ class Product {
     std::vector<std::uint32_t> candidates;
     // The model successors of the state being expanded: their rules, and their values back to back.
     std::vector<std::uint32_t> vias;
+    std::vector<std::uint64_t> turns;  // the scheduler's turn after each successor
     std::vector<Value> successorValues;
     const std::size_t width = values.size();
     double nextReport = 1.0;
     for (std::size_t i = 0; i < store_.size(); ++i) {
       edgeStart_.push_back(edges_.size());
       layout.unpack(store_.state(i), values.data());
+      if (region_ && !region_(values.data())) continue;
       std::uint32_t q = automatonState(i);
+      const std::uint64_t turn = store_.state(i)[layout.words()] >> 32;
       vias.clear();
       successorValues.clear();
       cm_.candidateRules(values.data(), candidates);
+      // Rules left out of a hunt (bar, senseOnly); they still count as enabled for fairness.
+      auto leftOut = [&](std::uint32_t r) {
+        return (!barred_.empty() && barred_[r] != 0) || (sensing_ != nullptr && !sensing_->agrees(r, world_));
+      };
+      // With the round-robin scheduler: the group whose turn it is (the first at or after the turn
+      // with a rule that may step), and the turn after it.
+      std::uint32_t chosen = Fairness::kNone;
+      std::uint64_t nextTurn = turn;
+      if (scheduler_ != nullptr) {
+        const std::uint64_t groups = scheduler_->groups();
+        std::uint64_t best = UINT64_MAX;
+        for (std::uint32_t r : candidates) {
+          const std::uint32_t g = scheduler_->groupOf[r];
+          if (g == Fairness::kNone || leftOut(r) || cm_.rules()[r].guard.eval(values.data()) == 0) continue;
+          const std::uint64_t distance = (g + groups - turn) % groups;
+          if (distance < best) best = distance, chosen = g;
+        }
+        if (chosen != Fairness::kNone) nextTurn = (chosen + 1) % groups;
+      }
+      turns.clear();
       bool fairEnabled = false;
       for (std::uint32_t r : candidates) {
         const CompiledRule& rule = cm_.rules()[r];
         if (rule.guard.eval(values.data()) == 0) continue;
-        fairEnabled = fairEnabled || cm_.model().rules[r].weaklyFair || cm_.model().rules[r].stronglyFair;
+        const bool fair = cm_.model().rules[r].weaklyFair || cm_.model().rules[r].stronglyFair;
+        fairEnabled = fairEnabled || fair;
+        if (leftOut(r) || (scheduler_ != nullptr && fair && scheduler_->groupOf[r] != chosen)) continue;
         for (std::size_t b = 0; b < rule.branches.size(); ++b) {
           if (!cm_.step(rule.branches[b], values.data(), next.data())) {
             why = "an update left a variable's declared range (run 'check' for the trace)";
             return false;
           }
           vias.push_back(r << 8 | static_cast<std::uint32_t>(b));
+          turns.push_back(scheduler_ != nullptr && fair ? nextTurn : turn);
           successorValues.insert(successorValues.end(), next.begin(), next.end());
         }
       }
       if (!fairEnabled) {
         vias.push_back(kStutter << 8);
+        turns.push_back(turn);
         successorValues.insert(successorValues.end(), values.begin(), values.end());
       }
       for (std::size_t k = 0; k < vias.size(); ++k) {
@@ -143,7 +193,7 @@ class Product {
         std::uint64_t bits = atomBits(succ);
         for (std::uint32_t target : ba_.states[q].successors) {
           if (!labelHolds(target, bits)) continue;
-          std::uint32_t index = insert(succ, target, static_cast<std::uint32_t>(i), vias[k], packed);
+          std::uint32_t index = insert(succ, target | turns[k] << 32, static_cast<std::uint32_t>(i), vias[k], packed);
           edges_.push_back({index, vias[k]});
           if (symmetric()) edgePerms_.push_back(perm);
         }
@@ -195,7 +245,7 @@ class Product {
   [[nodiscard]] const PermutationTable& perms() const { return perms_; }
 
  private:
-  std::uint32_t insert(const Value* v, std::uint32_t q, std::uint32_t parent, std::uint32_t via, std::vector<std::uint64_t>& packed) {
+  std::uint32_t insert(const Value* v, std::uint64_t q, std::uint32_t parent, std::uint32_t via, std::vector<std::uint64_t>& packed) {
     cm_.layout().pack(v, packed.data());
     packed.back() = q;
     return store_.insert(packed.data(), parent, via).first;
@@ -216,6 +266,12 @@ class Product {
     const BuchiState& s = ba_.states[q];
     return (bits & s.mustHold) == s.mustHold && (bits & s.mustFail) == 0;
   }
+  std::vector<Value> start_;
+  std::function<bool(const Value*)> region_;
+  const Fairness* scheduler_ = nullptr;
+  std::vector<char> barred_;
+  const Sensing* sensing_ = nullptr;
+  std::vector<std::int8_t> world_;
   std::vector<std::uint64_t> edgeStart_;
   std::vector<Edge> edges_;
   Symmetry symmetry_;

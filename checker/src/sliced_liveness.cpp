@@ -23,6 +23,7 @@
 #include "semo/checker/lasso_check.hpp"
 #include "semo/checker/liveness_search.hpp"
 #include "semo/checker/slicing.hpp"
+#include "region_lasso.hpp"
 
 namespace semo::checker::detail {
 
@@ -33,6 +34,7 @@ constexpr std::size_t kStutterSearch = 4096;  // states a search for a hidden st
 constexpr std::size_t kLoopRounds = 64;        // times the loop is taken waiting for the model to repeat
 constexpr std::size_t kFairnessRepairs = 32;
 constexpr std::size_t kEntrySearch = 200000;  // states a search for a way into the loop may visit
+constexpr std::uint64_t kRegionStates = 200'000;  // product states a search of the loop's region may take
 
 using State = std::vector<Value>;
 
@@ -73,6 +75,7 @@ class Concretizer {
   // when nothing the slice left out is to blame) and why() said.
   bool run(Trace& out, const ir::Property& property) {
     if (attempt(out, property)) return true;
+    if (searchRegion(out, property)) return true;
     // Nothing on the loop to blame: then what kept the slice's own way into the loop from being taken.
     if (std::none_of(refine_.begin(), refine_.end(), [](char c) { return c != 0; })) refine_ = prefixBlame_;
     return false;
@@ -103,6 +106,8 @@ class Concretizer {
     extras_.assign(ruleAt_.size() - loopStart_ + 1, {});
     const std::size_t prefixEnd = path_.size();
     const State loopEntry = x;
+    entryPath_.assign(path_.begin(), path_.end());
+    entry_ = loopEntry;
     for (std::size_t repair = 0; repair <= kFairnessRepairs; ++repair) {
       path_.resize(prefixEnd);
       slotAfter_.resize(prefixEnd);
@@ -128,6 +133,56 @@ class Concretizer {
     }
     why_ = "the rebuilt loop neglects fair rules after " + std::to_string(kFairnessRepairs) + " repairs";
     return false;
+  }
+
+  // Where the slice's loop cannot be followed step by step: the whole model's states that the slice
+  // sees as one of its loop's, searched from the state where the run entered the loop for a fair
+  // accepting cycle of their own (region_lasso.hpp). The slice's blame stays as it was.
+  bool searchRegion(Trace& out, const ir::Property& property) {
+    if (!entry_) return false;
+    std::unordered_map<State, char, StateHash> views;
+    for (std::size_t k = loopStart_; k < abstract_.size(); ++k) views.emplace(abstract_[k], 1);
+    State view(slice_.variables.size());
+    auto inRegion = [&](const Value* v) {
+      for (std::size_t i = 0; i < view.size(); ++i) view[i] = v[slice_.variables[i]];
+      return views.count(view) != 0;
+    };
+    if (!inRegion(entry_->data())) return false;
+    if (std::getenv("SEMO_DEBUG_SLICING") != nullptr) {
+      for (const auto& [v, unused] : views) {
+        std::string text;
+        for (std::size_t i = 0; i < v.size(); ++i) text += " " + cm_.model().variables[slice_.variables[i]].name + "=" + std::to_string(v[i]);
+        std::fprintf(stderr, "[slice]   region view:%s\n", text.c_str());
+      }
+    }
+    RegionSearch found = lassoInRegion(cm_, property, *entry_, inRegion, kRegionStates);
+    regionStates_ += found.states;
+    if (!found.lasso) {
+      why_ += "; " + found.why;
+      return false;
+    }
+    Trace t;
+    t.property = property.name;
+    t.kind = "lasso";
+    t.initial = initial_;
+    State before = initial_;
+    for (const Move& m : entryPath_) {
+      Step step{m.rule, m.branch, {}};
+      for (ir::VarId v = 0; v < before.size(); ++v) {
+        if (before[v] != m.after[v]) step.changes.push_back({v, before[v], m.after[v]});
+      }
+      t.steps.push_back(std::move(step));
+      before = m.after;
+    }
+    t.loopStart = t.steps.size() + found.lasso->loopStart;
+    for (Step& step : found.lasso->steps) t.steps.push_back(std::move(step));
+    LassoCheck check = checkLasso(cm_.model(), t, property);
+    if (!check.valid || !check.unfairGroups.empty() || !check.unsettled.empty() || !check.violates) {
+      why_ += "; the region's lasso does not replay: " + (check.valid ? std::string("unfair or not a violation") : check.why);
+      return false;
+    }
+    out = std::move(t);
+    return true;
   }
 
   [[nodiscard]] bool sees(const State& x, const State& abstract) const {
@@ -408,6 +463,14 @@ class Concretizer {
     return t;
   }
 
+  std::vector<Move> entryPath_;  // the way into the slice's loop, when one was found
+  std::optional<State> entry_;
+  std::uint64_t regionStates_ = 0;
+
+ public:
+  [[nodiscard]] std::uint64_t regionStates() const { return regionStates_; }
+
+ private:
   const CompiledModel& cm_;
   const Slice& slice_;
   const Fairness fairness_;
@@ -480,7 +543,9 @@ SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const
     }
     Concretizer concretizer(full, slice, *p.counterexample, prop.settled);
     Trace concrete;
-    if (concretizer.run(concrete, prop)) {
+    const bool rebuilt = concretizer.run(concrete, prop);
+    out.states += concretizer.regionStates();
+    if (rebuilt) {
       out.property.verdict = Verdict::Violated;
       out.property.counterexample = std::move(concrete);
       return out;

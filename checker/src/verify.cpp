@@ -82,6 +82,7 @@ void livenessVerdicts(Report& out, const ir::Model& model) {
       v.coverage = "lasso of " + steps(t.steps.size()) + " below, " +
                    (t.loopStart >= t.steps.size() ? std::string("then it stays for ever") : "loop from step " + std::to_string(t.loopStart + 1)) +
                    (settled ? ", in which what the robots sense settles" : "");
+      if (searched && live.methods[k].roundRobin) v.coverage += "; found with the robots taking turns, after no slice decided";
     }
     out.properties.push_back(std::move(v));
   }

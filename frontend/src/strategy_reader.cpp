@@ -338,7 +338,7 @@ class StrategyReader {
   }
 
   void readValue(const XMLElement* e, Strategy& s) {
-    xml_.checkAttributes(e, {"name"});
+    xml_.checkAttributes(e, {"name", "source"});
     xml_.checkChildren(e, {"domain", "implementation"});
     auto name = xml_.required(e, "name");
     if (!name) return;
@@ -351,6 +351,12 @@ class StrategyReader {
     value.team = parts[0];
     value.var = parts[1];
     value.at = xml_.at(e);
+    const std::string source = e->Attribute("source") ? e->Attribute("source") : "robot";
+    if (source == "team") {
+      value.teamSource = true;
+    } else if (source != "robot") {
+      xml_.attributeError(e, "source", "a value's source must be 'robot' (each robot senses it for itself) or 'team' (one source every robot reads), not '" + source + "'");
+    }
     if (duplicate(s.values, [&](const Value& v) { return v.team == parts[0] && v.var == parts[1]; }, e, "value '" + *name + "'")) return;
     const XMLElement* d = e->FirstChildElement("domain");
     if (d == nullptr) {

@@ -347,6 +347,24 @@ std::optional<Expr> Translator::condition(Index robot, const model::Cond& c) con
   return std::nullopt;  // ordering symbols means nothing
 }
 
+bool Translator::readsTeamSourcesOnly(const model::Cond& c) const {
+  using K = model::Cond::Kind;
+  if (c.kind == K::Not) return readsTeamSourcesOnly(*c.left);
+  if (c.kind == K::And || c.kind == K::Or) return readsTeamSourcesOnly(*c.left) && readsTeamSourcesOnly(*c.right);
+  bool anyValue = false;
+  for (const model::Expr* e : {&c.lhs, &c.rhs}) {
+    if (c.kind == K::Test && e == &c.rhs) break;
+    if (e->kind != model::Expr::Kind::Value) continue;
+    anyValue = true;
+    if (e->owner >= m_.teams.size()) return false;
+    const std::string& team = m_.teams[e->owner].name;
+    const auto v = std::find_if(m_.strategy.values.begin(), m_.strategy.values.end(),
+                                [&](const strategy::Value& x) { return x.team == team && x.var == e->var; });
+    if (v == m_.strategy.values.end() || !v->teamSource) return false;
+  }
+  return anyValue;
+}
+
 std::string Translator::sensedText(const model::Cond& c, bool& negated) const {
   using K = model::Cond::Kind;
   auto exprText = [&](const model::Expr& e) -> std::string {
@@ -498,7 +516,10 @@ void Translator::walk(Index robot, std::size_t planIndex, std::size_t at, Path p
         // What is sensed: the robot, and the condition, the same wherever the robot senses it (a
         // settling world gives it one value); a negated comparison is its positive one, failing.
         bool negated = false;
-        const std::string point = m_.robots[robot].name + "." + sensedText(*in.cond, negated);
+        // A condition on values of one source for the whole team (strategy: source="team") is
+        // one point for every robot: on a settling world they all read it the same way.
+        const std::string text = sensedText(*in.cond, negated);
+        const std::string point = readsTeamSourcesOnly(*in.cond) ? text : m_.robots[robot].name + "." + text;
         yes.sensed.push_back({point, !negated});
         no.sensed.push_back({point, negated});
       }

@@ -72,6 +72,8 @@ class Translator {
   // A sensed condition as text, the same for every place it is written: `negated` flips when the
   // text is of its negation (x >= 1 is !(x < 1)).
   [[nodiscard]] std::string sensedText(const model::Cond& c, bool& negated) const;
+  // Whether every value the condition reads comes from one source for its team (source="team").
+  [[nodiscard]] bool readsTeamSourcesOnly(const model::Cond& c) const;
   void walk(Index robot, std::size_t planIndex, std::size_t at, Path path, std::size_t start, int depth);
   void finish(Index robot, std::size_t planIndex, std::size_t start, std::size_t target, Path path);
   void effect(Index robot, std::size_t planIndex, const Instr& in, Path& path, std::vector<Path>& out);

@@ -2,6 +2,8 @@
 // end, the temporal operators, and the Büchi construction's acceptance sets.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "semo/checker/buchi.hpp"
 #include "semo/checker/liveness_search.hpp"
 #include "ir_support.hpp"
@@ -135,6 +137,50 @@ TEST(Liveness, AFairCycleAmongTheStatesExploredIsAViolationEvenWhenTheSearchStop
   r = checkLiveness(parse(m + "property p : always eventually {y};\n"), small, whole);
   EXPECT_EQ(r.properties[0].verdict, Verdict::Unknown);
   EXPECT_FALSE(r.complete);
+}
+
+TEST(Liveness, ARoundRobinHuntFindsAViolationNoSliceAndNoPartialSearchReaches) {
+  // Eight counters cycle; z may decide once, by what it senses, to leave m = 0 for good. The
+  // property reads every counter, so no slice is smaller than the product (131,072 states), far
+  // beyond the budget of 1000; breadth-first, 1000 states hold no loop on which every counter
+  // comes back. With the counters taking turns, the world in which z senses p is a short loop.
+  std::string m = "semo-ir 1;\nvar m : 0..1 = 0;\n";
+  std::string sum;
+  for (int k = 1; k <= 8; ++k) {
+    const std::string c = "c" + std::to_string(k);
+    m += "var " + c + " : 0..3 = 0;\n";
+    sum += (sum.empty() ? "" : " + ") + c;
+  }
+  for (int k = 1; k <= 8; ++k) {
+    const std::string c = "c" + std::to_string(k);
+    m += "rule tick" + std::to_string(k) + " @fair : true -> " + c + "' = (" + c + " + 1) % 4;\n";
+  }
+  m += "rule go @fair(z) @senses(\"z.p=1\") : m == 0 -> m' = 1;\n"
+       "rule stay @fair(z) @senses(\"z.p=0\") : m == 0 -> skip;\n";
+  SearchLimits small;
+  small.maxStates = 1000;
+  LivenessOptions options;
+  options.sliceStates = 1000;
+  LivenessResult r = checkLiveness(parse(m + "property p : always eventually {m == 0 || " + sum + " == 99};\n"), small, options);
+  ASSERT_EQ(r.properties.size(), 1u);
+  EXPECT_EQ(r.properties[0].verdict, Verdict::Violated);
+  ASSERT_TRUE(r.properties[0].counterexample.has_value());
+  ASSERT_EQ(r.methods.size(), 1u);
+  EXPECT_TRUE(r.methods[0].roundRobin);
+  EXPECT_TRUE(r.complete);
+  const Trace& t = *r.properties[0].counterexample;
+  EXPECT_LT(t.loopStart, t.steps.size());
+  // The lasso's loop moves every counter (it is fair to them) and z is out of m = 0.
+  std::vector<char> ticked(8, 0);
+  for (std::size_t i = t.loopStart; i < t.steps.size(); ++i) {
+    if (t.steps[i].rule < 8) ticked[t.steps[i].rule] = 1;
+  }
+  EXPECT_EQ(std::count(ticked.begin(), ticked.end(), 1), 8);
+  // Without the world in which z leaves, the same hunt finds nothing: unknown, never proven.
+  std::string quiet = m;
+  quiet.replace(quiet.find("m == 0 -> m' = 1"), 16, "m == 2 -> m' = 1");
+  r = checkLiveness(parse(quiet + "property p : always eventually {m == 0 || " + sum + " == 99};\n"), small, options);
+  EXPECT_NE(r.properties[0].verdict, Verdict::Violated);
 }
 
 TEST(Buchi, AcceptanceSetsOnePerUntil) {

@@ -140,7 +140,7 @@ nlohmann::json reportJson(const checker::Report& r, const ir::Model& model, cons
       else if (ltl < r.liveness.notes.size() && !r.liveness.notes[ltl].empty()) jp["note"] = r.liveness.notes[ltl];
       if (ltl < r.liveness.methods.size() && r.livenessSkipped.empty()) {
         const checker::LivenessMethod& m = r.liveness.methods[ltl];
-        json search = {{"on", m.sliced ? "slice" : "whole product"}, {"productStates", m.states}, {"seconds", m.seconds}};
+        json search = {{"on", m.roundRobin ? "round-robin" : m.sliced ? "slice" : "whole product"}, {"productStates", m.states}, {"seconds", m.seconds}};
         if (m.sliced) {
           search["variables"] = m.keptVariables;
           search["ofVariables"] = model.variables.size();

@@ -28,6 +28,7 @@ struct LivenessMethod {
   std::uint32_t refinements = 0;  // sliced: slices tried before it
   std::uint64_t states = 0;       // product states searched for this property (all slices, any fallback)
   std::string slicingGaveUp;      // why no slice decided, when the whole product was searched after them
+  bool roundRobin = false;        // the violation was found under a round-robin scheduler (region_lasso.hpp)
   double seconds = 0;             // spent on this property
 };
 

@@ -90,6 +90,9 @@ struct Domain {
 struct Value {
   std::string team, var;  // name="Team.var"
   Domain domain;
+  // source="team": every robot of the team reads one source (an operator's console, a beacon), so
+  // that on a settling world they all read the same; default "robot": each senses it for itself.
+  bool teamSource = false;
   std::vector<Implementation> implementations;
   SourceRange at;
   [[nodiscard]] const Implementation* implementationFor(const std::string& robotType) const;

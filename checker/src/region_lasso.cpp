@@ -1,0 +1,134 @@
+// A lasso inside a region of the model's states (region_lasso.hpp).
+#include "region_lasso.hpp"
+
+#include <optional>
+#include <stdexcept>
+
+#include "fair_cycle_search.hpp"
+#include "liveness_product.hpp"
+#include "semo/checker/buchi.hpp"
+#include "semo/checker/fairness.hpp"
+#include "semo/checker/lasso_check.hpp"
+
+namespace semo::checker::detail {
+
+namespace {
+
+// The product's fair accepting cycle and the lasso to it, once explored (cut short or not).
+void findLasso(const CompiledModel& cm, const ir::Property& property, const Buchi& ba, Product& product, RegionSearch& out) {
+  out.states = product.size();
+  product.closeFrontier();
+  FairCycleSearch search(cm, ba, product, property.settled);
+  std::vector<std::uint32_t> cycle = search.find();
+  if (cycle.empty()) {
+    out.why = "no fair cycle in the " + std::to_string(out.states) + " states explored";
+    return;
+  }
+  const std::uint32_t entry = *std::min_element(cycle.begin(), cycle.end());
+  out.lasso = lasso(cm, product, entry, fairLoop(ba, product, search, cycle, entry));
+}
+
+std::optional<Buchi> negation(const ir::Property& property, RegionSearch& out) {
+  try {
+    return buildBuchi(ir::Ltl::unary(ir::Ltl::Kind::Not, property.formula));
+  } catch (const std::length_error& e) {
+    out.why = e.what();
+    return std::nullopt;
+  }
+}
+
+// Product states one world of the round-robin hunt may take.
+constexpr std::uint64_t kStatesPerWorld = 200'000;
+
+SearchLimits within(std::uint64_t maxStates) {
+  SearchLimits limits;
+  limits.maxStates = maxStates;
+  limits.symmetry = false;
+  return limits;
+}
+
+}  // namespace
+
+RegionSearch lassoUnderRoundRobin(const CompiledModel& cm, const ir::Property& property, std::uint64_t maxStates) {
+  RegionSearch out;
+  std::optional<Buchi> ba = negation(property, out);
+  if (!ba) return out;
+  const ir::Model& model = cm.model();
+  const Fairness fairness = Fairness::of(model);
+  const Sensing sensing = Sensing::in(model);
+  // The worlds tried, each deciding every sensed condition one way for the whole run: the quiet
+  // one (every condition failing: no danger, the operator away, arrived), then those where one
+  // condition holds, then two.
+  std::vector<std::vector<std::int8_t>> worlds{std::vector<std::int8_t>(sensing.points, 0)};
+  for (std::size_t a = 0; a < sensing.points; ++a) {
+    worlds.push_back(worlds[0]);
+    worlds.back()[a] = 1;
+  }
+  for (std::size_t a = 0; a < sensing.points; ++a) {
+    for (std::size_t b = a + 1; b < sensing.points; ++b) {
+      worlds.push_back(worlds[0]);
+      worlds.back()[a] = worlds.back()[b] = 1;
+    }
+  }
+  // Without crashes and losses first, then with losses: most violations need few faults.
+  std::uint64_t left = maxStates;
+  std::size_t tried = 0;
+  for (int faults = 0; faults < 2 && left > 0; ++faults) {
+    std::vector<char> barred(model.rules.size(), 0);
+    bool any = false;
+    for (std::size_t r = 0; r < barred.size(); ++r) {
+      const ir::RuleKind kind = model.rules[r].kind;
+      barred[r] = kind == ir::RuleKind::Crash || (faults == 0 && kind == ir::RuleKind::Loss) ? 1 : 0;
+      any = any || (faults == 0 && kind == ir::RuleKind::Loss);
+    }
+    if (faults == 1 && !any) break;  // no loss to allow: the same searches again
+    for (const std::vector<std::int8_t>& world : worlds) {
+      if (left == 0) break;
+      Product product(cm, *ba, nullptr);
+      product.roundRobin(&fairness);
+      product.bar(barred);
+      product.senseOnly(&sensing, world);
+      std::string why;
+      RegionSearch stage;
+      const std::uint64_t budget = std::min(left, kStatesPerWorld);
+      if (!product.explore(within(budget), Clock::now(), 0, why) && why.rfind("--max-states", 0) != 0) continue;
+      findLasso(cm, property, *ba, product, stage);
+      ++tried;
+      out.states += stage.states;
+      left -= std::min(left, stage.states);
+      if (!stage.lasso) continue;
+      stage.lasso->property = property.name;
+      stage.lasso->kind = "lasso";
+      LassoCheck check = checkLasso(model, *stage.lasso, property);
+      if (check.valid && check.unfairGroups.empty() && check.unsettled.empty() && check.violates) {
+        out.lasso = std::move(stage.lasso);
+        return out;
+      }
+    }
+  }
+  out.why = "no fair violation in " + std::to_string(tried) + " worlds under a round-robin scheduler (" +
+            std::to_string(out.states) + " product states)";
+  return out;
+}
+
+RegionSearch lassoInRegion(const CompiledModel& cm, const ir::Property& property, const std::vector<Value>& start,
+                           const std::function<bool(const Value*)>& inRegion, std::uint64_t maxStates) {
+  RegionSearch out;
+  std::optional<Buchi> ba = negation(property, out);
+  if (!ba) return out;
+  // The automaton starts afresh at `start`: a run from there that satisfies the negation is the
+  // end of a run from the initial state that does for the built-in properties (each an `always`);
+  // for any other, checkLasso decides on the whole lasso.
+  Product product(cm, *ba, nullptr);
+  product.startFrom(start);
+  product.expandOnly(inRegion);
+  std::string why;
+  if (!product.explore(within(maxStates), Clock::now(), 0, why) && why.rfind("--max-states", 0) != 0) {
+    out.why = why;
+    return out;
+  }
+  findLasso(cm, property, *ba, product, out);
+  return out;
+}
+
+}  // namespace semo::checker::detail
