@@ -99,8 +99,7 @@ RegionSearch lassoUnderRoundRobin(const CompiledModel& cm, const ir::Property& p
       if (!stage.lasso) continue;
       stage.lasso->property = property.name;
       stage.lasso->kind = "lasso";
-      LassoCheck check = checkLasso(model, *stage.lasso, property);
-      if (check.valid && check.unfairGroups.empty() && check.unsettled.empty() && check.violates) {
+      if (checkLasso(model, *stage.lasso, property).counterexample()) {
         out.lasso = std::move(stage.lasso);
         return out;
       }

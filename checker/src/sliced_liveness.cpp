@@ -114,7 +114,7 @@ class Concretizer {
       x = loopEntry;
       std::size_t loopFrom = 0;
       if (!closeLoop(x, loopFrom)) return false;
-      out = toTrace(loopFrom);
+      out = toTrace(path_, loopFrom);
       LassoCheck check = checkLasso(cm_.model(), out, property);
       if (!check.valid) {
         why_ = "the rebuilt lasso does not replay: " + check.why;
@@ -161,23 +161,10 @@ class Concretizer {
       why_ += "; " + found.why;
       return false;
     }
-    Trace t;
-    t.property = property.name;
-    t.kind = "lasso";
-    t.initial = initial_;
-    State before = initial_;
-    for (const Move& m : entryPath_) {
-      Step step{m.rule, m.branch, {}};
-      for (ir::VarId v = 0; v < before.size(); ++v) {
-        if (before[v] != m.after[v]) step.changes.push_back({v, before[v], m.after[v]});
-      }
-      t.steps.push_back(std::move(step));
-      before = m.after;
-    }
-    t.loopStart = t.steps.size() + found.lasso->loopStart;
+    Trace t = toTrace(entryPath_, entryPath_.size() + found.lasso->loopStart);
     for (Step& step : found.lasso->steps) t.steps.push_back(std::move(step));
     LassoCheck check = checkLasso(cm_.model(), t, property);
-    if (!check.valid || !check.unfairGroups.empty() || !check.unsettled.empty() || !check.violates) {
+    if (!check.counterexample()) {
       why_ += "; the region's lasso does not replay: " + (check.valid ? std::string("unfair or not a violation") : check.why);
       return false;
     }
@@ -445,13 +432,14 @@ class Concretizer {
     return true;
   }
 
-  Trace toTrace(std::size_t loopFrom) const {
+  // The moves from the initial state as a trace, its loop from step loopFrom.
+  Trace toTrace(const std::vector<Move>& path, std::size_t loopFrom) const {
     Trace t;
     t.property = slice_.model.properties[0].name;
     t.kind = "lasso";
     t.initial = initial_;
     State before = initial_;
-    for (const Move& m : path_) {
+    for (const Move& m : path) {
       Step s{m.rule, m.branch, {}};
       for (ir::VarId v = 0; v < before.size(); ++v) {
         if (before[v] != m.after[v]) s.changes.push_back({v, before[v], m.after[v]});
