@@ -1,6 +1,7 @@
 // A lasso inside a region of the model's states (region_lasso.hpp).
 #include "region_lasso.hpp"
 
+#include <algorithm>
 #include <optional>
 #include <stdexcept>
 
@@ -73,15 +74,13 @@ RegionSearch lassoUnderRoundRobin(const CompiledModel& cm, const ir::Property& p
   // Without crashes and losses first, then with losses: most violations need few faults.
   std::uint64_t left = maxStates;
   std::size_t tried = 0;
-  for (int faults = 0; faults < 2 && left > 0; ++faults) {
+  const bool lossy = std::any_of(model.rules.begin(), model.rules.end(), [](const ir::Rule& r) { return r.kind == ir::RuleKind::Loss; });
+  for (int faults = 0; faults < (lossy ? 2 : 1) && left > 0; ++faults) {
     std::vector<char> barred(model.rules.size(), 0);
-    bool any = false;
     for (std::size_t r = 0; r < barred.size(); ++r) {
       const ir::RuleKind kind = model.rules[r].kind;
       barred[r] = kind == ir::RuleKind::Crash || (faults == 0 && kind == ir::RuleKind::Loss) ? 1 : 0;
-      any = any || (faults == 0 && kind == ir::RuleKind::Loss);
     }
-    if (faults == 1 && !any) break;  // no loss to allow: the same searches again
     for (const std::vector<std::int8_t>& world : worlds) {
       if (left == 0) break;
       Product product(cm, *ba, nullptr);

@@ -183,6 +183,36 @@ TEST(Liveness, ARoundRobinHuntFindsAViolationNoSliceAndNoPartialSearchReaches) {
   EXPECT_NE(r.properties[0].verdict, Verdict::Violated);
 }
 
+TEST(Liveness, TheRoundRobinHuntAllowsLossesWhenNoLosslessRunViolates) {
+  // A message sent once is delivered unless it is lost; the counters keep every slice as large as
+  // the product, and come back only all together (reset), too deep for 1000 states breadth-first.
+  // Without losses every run delivers the message; the violation needs the loss.
+  std::string m = "semo-ir 1;\nvar sent : bool = false;\nvar inbox : bool = false;\nvar got : bool = false;\n";
+  std::string sum, full, reset;
+  for (int k = 1; k <= 8; ++k) {
+    const std::string c = "c" + std::to_string(k);
+    m += "var " + c + " : 0..3 = 0;\nrule tick" + std::to_string(k) + " @fair : " + c + " < 3 -> " + c + "' = " + c + " + 1;\n";
+    sum += (sum.empty() ? "" : " + ") + c;
+    full += (full.empty() ? "" : " && ") + c + " == 3";
+    reset += (reset.empty() ? "" : ", ") + c + "' = 0";
+  }
+  m += "rule send @fair : !sent -> sent' = true, inbox' = true;\n"
+       "rule lose @kind(loss) : inbox -> inbox' = false;\n"
+       "rule deliver @fair : inbox -> inbox' = false, got' = true;\n"
+       "rule reset @fair : " + full + " -> " + reset + ";\n";
+  SearchLimits small;
+  small.maxStates = 1000;
+  LivenessOptions options;
+  options.sliceStates = 1000;
+  LivenessResult r = checkLiveness(parse(m + "property p : eventually {got || " + sum + " == 99};\n"), small, options);
+  ASSERT_EQ(r.properties.size(), 1u);
+  EXPECT_EQ(r.properties[0].verdict, Verdict::Violated);
+  ASSERT_TRUE(r.properties[0].counterexample.has_value());
+  EXPECT_TRUE(r.methods[0].roundRobin);
+  const Trace& t = *r.properties[0].counterexample;
+  EXPECT_TRUE(std::any_of(t.steps.begin(), t.steps.end(), [](const Step& s) { return s.rule == 9; })) << "the lasso loses the message";
+}
+
 TEST(Buchi, AcceptanceSetsOnePerUntil) {
   ir::Model m = parse("semo-ir 1;\nvar x : bool;\nproperty p : always eventually {x} && eventually {!x};\n");
   Buchi b = buildBuchi(m.properties[0].formula);
