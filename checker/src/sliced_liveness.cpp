@@ -75,7 +75,6 @@ class Concretizer {
   // when nothing the slice left out is to blame) and why() said.
   bool run(Trace& out, const ir::Property& property) {
     if (attempt(out, property)) return true;
-    if (searchRegion(out, property)) return true;
     // Nothing on the loop to blame: then what kept the slice's own way into the loop from being taken.
     if (std::none_of(refine_.begin(), refine_.end(), [](char c) { return c != 0; })) refine_ = prefixBlame_;
     return false;
@@ -135,9 +134,10 @@ class Concretizer {
     return false;
   }
 
-  // Where the slice's loop cannot be followed step by step: the whole model's states that the slice
-  // sees as one of its loop's, searched from the state where the run entered the loop for a fair
-  // accepting cycle of their own (region_lasso.hpp). The slice's blame stays as it was.
+  // Where the slice's loop cannot be followed step by step and the refinement ends: the whole
+  // model's states that the slice sees as one of its loop's, searched from the state where the run
+  // entered the loop for a fair accepting cycle of their own (region_lasso.hpp).
+ public:
   bool searchRegion(Trace& out, const ir::Property& property) {
     if (!entry_) return false;
     std::unordered_map<State, char, StateHash> views;
@@ -171,6 +171,7 @@ class Concretizer {
     out = std::move(t);
     return true;
   }
+ private:
 
   [[nodiscard]] bool sees(const State& x, const State& abstract) const {
     for (std::size_t i = 0; i < slice_.variables.size(); ++i) {
@@ -531,25 +532,29 @@ SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const
     }
     Concretizer concretizer(full, slice, *p.counterexample, prop.settled);
     Trace concrete;
-    const bool rebuilt = concretizer.run(concrete, prop);
-    out.states += concretizer.regionStates();
-    if (rebuilt) {
+    auto violated = [&] {
+      out.states += concretizer.regionStates();
       out.property.verdict = Verdict::Violated;
       out.property.counterexample = std::move(concrete);
       return out;
-    }
+    };
+    if (concretizer.run(concrete, prop)) return violated();
     if (std::getenv("SEMO_DEBUG_SLICING") != nullptr) std::fprintf(stderr, "[slice]   not rebuilt: %s\n", concretizer.why().c_str());
+    bool grew = false;
+    for (std::size_t v = 0; v < keep.size(); ++v) {
+      if (concretizer.refine()[v] && !keep[v]) keep[v] = 1, grew = true;
+    }
     // A slice that filled its budget (its lasso found among the states explored) only grows when
-    // refined: give up rather than search ever larger slices to the budget.
+    // refined, and one that cannot grow is final: before giving up, the whole model is searched
+    // where the slice's loop is.
+    const bool last = r.states >= sub.maxStates || !grew;
+    if (last && concretizer.searchRegion(concrete, prop)) return violated();
+    out.states += concretizer.regionStates();
     if (r.states >= sub.maxStates) {
       out.why = "the slice of " + std::to_string(slice.variables.size()) + " of " + std::to_string(model.variables.size()) +
                 " variables filled " + (sliceStates < limits.maxStates ? "--slice-states " : "--max-states ") +
                 std::to_string(sub.maxStates) + " and its lasso could not be rebuilt: " + concretizer.why();
       return out;
-    }
-    bool grew = false;
-    for (std::size_t v = 0; v < keep.size(); ++v) {
-      if (concretizer.refine()[v] && !keep[v]) keep[v] = 1, grew = true;
     }
     if (!grew) {
       out.why = "the lasso of the slice of " + std::to_string(slice.variables.size()) + " variables could not be rebuilt: " + concretizer.why();
