@@ -71,25 +71,35 @@ RegionSearch lassoUnderRoundRobin(const CompiledModel& cm, const ir::Property& p
       worlds.back()[a] = worlds.back()[b] = 1;
     }
   }
-  // Without crashes and losses first, then with losses: most violations need few faults.
+  // Without crashes and losses first, then with losses, then with crashes too: most violations
+  // need few faults. Each stage gets an equal share of what the stages before it left.
+  auto has = [&](ir::RuleKind kind) {
+    return std::any_of(model.rules.begin(), model.rules.end(), [&](const ir::Rule& r) { return r.kind == kind; });
+  };
+  struct Stage {
+    bool losses, crashes;
+  };
+  std::vector<Stage> stages{{false, false}};
+  if (has(ir::RuleKind::Loss)) stages.push_back({true, false});
+  if (has(ir::RuleKind::Crash)) stages.push_back({true, true});
   std::uint64_t left = maxStates;
   std::size_t tried = 0;
-  const bool lossy = std::any_of(model.rules.begin(), model.rules.end(), [](const ir::Rule& r) { return r.kind == ir::RuleKind::Loss; });
-  for (int faults = 0; faults < (lossy ? 2 : 1) && left > 0; ++faults) {
+  for (std::size_t k = 0; k < stages.size() && left > 0; ++k) {
     std::vector<char> barred(model.rules.size(), 0);
     for (std::size_t r = 0; r < barred.size(); ++r) {
       const ir::RuleKind kind = model.rules[r].kind;
-      barred[r] = kind == ir::RuleKind::Crash || (faults == 0 && kind == ir::RuleKind::Loss) ? 1 : 0;
+      barred[r] = (kind == ir::RuleKind::Crash && !stages[k].crashes) || (kind == ir::RuleKind::Loss && !stages[k].losses) ? 1 : 0;
     }
+    const std::uint64_t stageEnd = left - left / (stages.size() - k);  // what this stage leaves to the rest
     for (const std::vector<std::int8_t>& world : worlds) {
-      if (left == 0) break;
+      if (left <= stageEnd) break;
       Product product(cm, *ba, nullptr);
       product.roundRobin(&fairness);
       product.bar(barred);
       product.senseOnly(&sensing, world);
       std::string why;
       RegionSearch stage;
-      const std::uint64_t budget = std::min(left, kStatesPerWorld);
+      const std::uint64_t budget = std::min(left - stageEnd, kStatesPerWorld);
       if (!product.explore(within(budget), Clock::now(), 0, why) && why.rfind("--max-states", 0) != 0) continue;
       findLasso(cm, property, *ba, product, stage);
       ++tried;

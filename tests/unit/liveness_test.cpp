@@ -213,6 +213,34 @@ TEST(Liveness, TheRoundRobinHuntAllowsLossesWhenNoLosslessRunViolates) {
   EXPECT_TRUE(std::any_of(t.steps.begin(), t.steps.end(), [](const Step& s) { return s.rule == 9; })) << "the lasso loses the message";
 }
 
+TEST(Liveness, TheRoundRobinHuntTriesCrashesLast) {
+  // The worker finishes unless it crashes first; the counters, as above, keep the slices and a
+  // breadth-first search from any loop. Only the stage that allows crashes finds the violation.
+  std::string m = "semo-ir 1;\nvar alive : bool = true;\nvar done : bool = false;\n";
+  std::string sum, full, reset;
+  for (int k = 1; k <= 8; ++k) {
+    const std::string c = "c" + std::to_string(k);
+    m += "var " + c + " : 0..3 = 0;\nrule tick" + std::to_string(k) + " @fair : " + c + " < 3 -> " + c + "' = " + c + " + 1;\n";
+    sum += (sum.empty() ? "" : " + ") + c;
+    full += (full.empty() ? "" : " && ") + c + " == 3";
+    reset += (reset.empty() ? "" : ", ") + c + "' = 0";
+  }
+  m += "rule crash @kind(crash) : alive -> alive' = false;\n"
+       "rule work @fair : alive && !done -> done' = true;\n"
+       "rule reset @fair : " + full + " -> " + reset + ";\n";
+  SearchLimits small;
+  small.maxStates = 1000;
+  LivenessOptions options;
+  options.sliceStates = 1000;
+  LivenessResult r = checkLiveness(parse(m + "property p : eventually {done || " + sum + " == 99};\n"), small, options);
+  ASSERT_EQ(r.properties.size(), 1u);
+  EXPECT_EQ(r.properties[0].verdict, Verdict::Violated);
+  ASSERT_TRUE(r.properties[0].counterexample.has_value());
+  EXPECT_TRUE(r.methods[0].roundRobin);
+  const Trace& t = *r.properties[0].counterexample;
+  EXPECT_TRUE(std::any_of(t.steps.begin(), t.steps.end(), [](const Step& s) { return s.rule == 8; })) << "the worker crashes";
+}
+
 TEST(Buchi, AcceptanceSetsOnePerUntil) {
   ir::Model m = parse("semo-ir 1;\nvar x : bool;\nproperty p : always eventually {x} && eventually {!x};\n");
   Buchi b = buildBuchi(m.properties[0].formula);
