@@ -141,7 +141,9 @@ class Product {
       vias.clear();
       successorValues.clear();
       cm_.candidateRules(values.data(), candidates);
-      // Rules left out of a hunt (bar, senseOnly); they still count as enabled for fairness.
+      // Rules left out of a hunt (bar, senseOnly); they still count as enabled for fairness. A
+      // plain exploration (hunting false) pays for none of it per rule.
+      const bool hunting = scheduler_ != nullptr || !barred_.empty() || sensing_ != nullptr;
       auto leftOut = [&](std::uint32_t r) {
         return (!barred_.empty() && barred_[r] != 0) || (sensing_ != nullptr && !sensing_->agrees(r, world_));
       };
@@ -167,20 +169,20 @@ class Product {
         if (rule.guard.eval(values.data()) == 0) continue;
         const bool fair = cm_.model().rules[r].weaklyFair || cm_.model().rules[r].stronglyFair;
         fairEnabled = fairEnabled || fair;
-        if (leftOut(r) || (scheduler_ != nullptr && fair && scheduler_->groupOf[r] != chosen)) continue;
+        if (hunting && (leftOut(r) || (scheduler_ != nullptr && fair && scheduler_->groupOf[r] != chosen))) continue;
         for (std::size_t b = 0; b < rule.branches.size(); ++b) {
           if (!cm_.step(rule.branches[b], values.data(), next.data())) {
             why = "an update left a variable's declared range (run 'check' for the trace)";
             return false;
           }
           vias.push_back(r << 8 | static_cast<std::uint32_t>(b));
-          turns.push_back(scheduler_ != nullptr && fair ? nextTurn : turn);
+          if (scheduler_ != nullptr) turns.push_back(fair ? nextTurn : turn);
           successorValues.insert(successorValues.end(), next.begin(), next.end());
         }
       }
       if (!fairEnabled) {
         vias.push_back(kStutter << 8);
-        turns.push_back(turn);
+        if (scheduler_ != nullptr) turns.push_back(turn);
         successorValues.insert(successorValues.end(), values.begin(), values.end());
       }
       for (std::size_t k = 0; k < vias.size(); ++k) {
@@ -193,7 +195,8 @@ class Product {
         std::uint64_t bits = atomBits(succ);
         for (std::uint32_t target : ba_.states[q].successors) {
           if (!labelHolds(target, bits)) continue;
-          std::uint32_t index = insert(succ, target | turns[k] << 32, static_cast<std::uint32_t>(i), vias[k], packed);
+          const std::uint64_t word = scheduler_ != nullptr ? target | turns[k] << 32 : target;
+          std::uint32_t index = insert(succ, word, static_cast<std::uint32_t>(i), vias[k], packed);
           edges_.push_back({index, vias[k]});
           if (symmetric()) edgePerms_.push_back(perm);
         }
