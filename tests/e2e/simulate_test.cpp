@@ -160,6 +160,22 @@ TEST(SimulateBadInput, PositionedErrorsAndNothingWritten) {
   EXPECT_EQ(empty.exit, 2);
   EXPECT_NE(empty.err.find("names a place the world does not have"), std::string::npos) << empty.err;
   EXPECT_NE(empty.err.find("no start pose for robot ev3_0"), std::string::npos) << empty.err;
+  // The strategy reads the operator's command from one source for the team (source="team"): a
+  // world that gives it by region would run what the checker did not assume.
+  {
+    std::string world = slurp(fs::path(SEMO_SOURCE_DIR) / "specs/examples/scouting/scouting.world.json");
+    const std::string constant = "\"SlaveTeam.operator_cmd\": {\n      \"constant\": \"auto\"\n    }";
+    ASSERT_NE(world.find(constant), std::string::npos);
+    world.replace(world.find(constant), constant.size(),
+                  "\"SlaveTeam.operator_cmd\": {\"regions\": [{\"circle\": {\"at\": [1, 1], \"radius\": 0.5}, \"value\": \"manual\"}], "
+                  "\"otherwise\": \"auto\"}");
+    std::ofstream(dir / "regions.world.json") << world;
+  }
+  CliRun regions = verify("simulate " + kScouting + " --world '" + (dir / "regions.world.json").string() + "' --trace '" + (dir / "t.json").string() + "'", dir);
+  EXPECT_EQ(regions.exit, 2);
+  EXPECT_NE(regions.err.find("SlaveTeam.operator_cmd is one source for the whole team (strategy: source=\"team\"), but the world gives it by region"),
+            std::string::npos) << regions.err;
+  EXPECT_FALSE(fs::exists(dir / "t.json"));
 }
 
 // No output replaces an input: not the mission, nor a URDF it reads, nor the world; the inputs are

@@ -17,6 +17,10 @@
 #include "semo/semantics/mission_model.hpp"
 #include "semo/semantics/translate.hpp"
 
+namespace semo::runtime {
+struct World;
+}
+
 namespace semo::cli {
 
 // The version every output names (--version, certificates).
@@ -147,6 +151,10 @@ void addModelInput(nlohmann::json& root, const ModelInput& in);
 std::optional<double> parseDuration(std::string_view text);
 // MISSION.world.json next to the mission.
 std::string defaultWorldPath(const std::string& mission);
+// A value the strategy reads from one source for the team (source="team") that the world gives by
+// region or by a sensor would be read differently by robots in different places: what the checker
+// assumed would not be what runs. One sentence per such value.
+std::vector<std::string> teamSourceProblems(const model::MissionModel& mission, const runtime::World& world);
 
 // Writes through a temporary file and renames it, so that a failure never leaves half a file.
 bool writeAtomically(const std::string& path, const std::string& text);

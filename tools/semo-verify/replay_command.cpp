@@ -132,6 +132,9 @@ int runReplay(const ReplayOptions& options) {
     for (const runtime::WorldError& e : errors) std::cerr << runtime::formatWorldError(e);
     if (!read) return kBadInput;
     world = std::move(*read);
+    const std::vector<std::string> problems = teamSourceProblems(*mission, world);
+    for (const std::string& p : problems) std::cerr << worldPath << ": error: " << p << "\n";
+    if (!problems.empty()) return kBadInput;
   }
   std::vector<Output> outputs;
   if (options.traceOut) outputs.push_back({"--save-trace", *options.traceOut});

@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "commands.hpp"
+#include "semo/runtime/world.hpp"
 
 namespace semo::cli {
 
@@ -15,6 +16,22 @@ std::optional<double> parseDuration(std::string_view text) {
   if (unit == "ms") return value / 1000.0;
   if (unit == "min") return value * 60.0;
   return std::nullopt;
+}
+
+std::vector<std::string> teamSourceProblems(const model::MissionModel& mission, const runtime::World& world) {
+  std::vector<std::string> problems;
+  for (const strategy::Value& v : mission.strategy.values) {
+    if (!v.teamSource) continue;
+    const std::string name = v.team + "." + v.var;
+    const runtime::ValueSource* src = world.value(name);
+    if (src == nullptr) continue;
+    if (src->kind == runtime::ValueSource::Kind::Regions || src->kind == runtime::ValueSource::Kind::Sensor) {
+      problems.push_back(name + " is one source for the whole team (strategy: source=\"team\"), but the world gives it " +
+                         (src->kind == runtime::ValueSource::Kind::Regions ? "by region" : "by a sensor") +
+                         ", so robots in different places read it differently; give it as \"constant\" or a \"schedule\" (runtime/WORLD.md)");
+    }
+  }
+  return problems;
 }
 
 std::string defaultWorldPath(const std::string& mission) {

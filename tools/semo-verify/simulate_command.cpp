@@ -165,6 +165,9 @@ int runSimulate(const SimulateOptions& options) {
   for (const runtime::WorldError& e : worldErrors) std::cerr << runtime::formatWorldError(e);
   if (!world) return kBadInput;
   std::vector<std::string> problems = runtime::checkWorld(tables, *world);
+  if (mission) {
+    for (std::string& p : teamSourceProblems(*mission, *world)) problems.push_back(std::move(p));
+  }
   for (const std::string& p : problems) std::cerr << worldPath << ": error: " << p << "\n";
   if (!problems.empty()) return kBadInput;
 
