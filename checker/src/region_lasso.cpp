@@ -38,8 +38,33 @@ std::optional<Buchi> negation(const ir::Property& property, RegionSearch& out) {
   }
 }
 
-// Product states one world of the round-robin hunt may take.
+// Product states one world of the round-robin hunt may take, and worlds one stage may try.
 constexpr std::uint64_t kStatesPerWorld = 200'000;
+constexpr std::size_t kWorldsPerStage = 4096;
+
+// Calls visit(world) for the worlds of the hunt, each deciding every sensed condition one way for
+// the whole run: the quiet one (every condition failing: no danger, the operator away, arrived),
+// then each where one condition holds, then each where two do; until visit returns false. Made one
+// at a time: a swarm senses hundreds of conditions.
+template <typename Visit>
+void forEachWorld(std::size_t points, Visit visit) {
+  std::vector<std::int8_t> world(points, 0);
+  if (!visit(world)) return;
+  for (std::size_t a = 0; a < points; ++a) {
+    world[a] = 1;
+    const bool more = visit(world);
+    world[a] = 0;
+    if (!more) return;
+  }
+  for (std::size_t a = 0; a < points; ++a) {
+    for (std::size_t b = a + 1; b < points; ++b) {
+      world[a] = world[b] = 1;
+      const bool more = visit(world);
+      world[a] = world[b] = 0;
+      if (!more) return;
+    }
+  }
+}
 
 SearchLimits within(std::uint64_t maxStates) {
   SearchLimits limits;
@@ -57,20 +82,6 @@ RegionSearch lassoUnderRoundRobin(const CompiledModel& cm, const ir::Property& p
   const ir::Model& model = cm.model();
   const Fairness fairness = Fairness::of(model);
   const Sensing sensing = Sensing::in(model);
-  // The worlds tried, each deciding every sensed condition one way for the whole run: the quiet
-  // one (every condition failing: no danger, the operator away, arrived), then those where one
-  // condition holds, then two.
-  std::vector<std::vector<std::int8_t>> worlds{std::vector<std::int8_t>(sensing.points, 0)};
-  for (std::size_t a = 0; a < sensing.points; ++a) {
-    worlds.push_back(worlds[0]);
-    worlds.back()[a] = 1;
-  }
-  for (std::size_t a = 0; a < sensing.points; ++a) {
-    for (std::size_t b = a + 1; b < sensing.points; ++b) {
-      worlds.push_back(worlds[0]);
-      worlds.back()[a] = worlds.back()[b] = 1;
-    }
-  }
   // Without crashes and losses first, then with losses, then with crashes too: most violations
   // need few faults. Each stage gets an equal share of what the stages before it left.
   auto has = [&](ir::RuleKind kind) {
@@ -91,8 +102,9 @@ RegionSearch lassoUnderRoundRobin(const CompiledModel& cm, const ir::Property& p
       barred[r] = (kind == ir::RuleKind::Crash && !stages[k].crashes) || (kind == ir::RuleKind::Loss && !stages[k].losses) ? 1 : 0;
     }
     const std::uint64_t stageEnd = left - left / (stages.size() - k);  // what this stage leaves to the rest
-    for (const std::vector<std::int8_t>& world : worlds) {
-      if (left <= stageEnd) break;
+    std::size_t visited = 0;
+    forEachWorld(sensing.points, [&](const std::vector<std::int8_t>& world) {
+      if (left <= stageEnd || ++visited > kWorldsPerStage) return false;
       Product product(cm, *ba, nullptr);
       product.roundRobin(&fairness);
       product.bar(barred);
@@ -100,19 +112,22 @@ RegionSearch lassoUnderRoundRobin(const CompiledModel& cm, const ir::Property& p
       std::string why;
       RegionSearch stage;
       const std::uint64_t budget = std::min(left - stageEnd, kStatesPerWorld);
-      if (!product.explore(within(budget), Clock::now(), 0, why) && why.rfind("--max-states", 0) != 0) continue;
+      if (!product.explore(within(budget), Clock::now(), 0, why) && why.rfind("--max-states", 0) != 0) {
+        left -= std::min<std::uint64_t>(left, product.size() + 1);  // every world costs something
+        return true;
+      }
       findLasso(cm, property, *ba, product, stage);
       ++tried;
       out.states += stage.states;
       left -= std::min(left, stage.states);
-      if (!stage.lasso) continue;
+      if (!stage.lasso) return true;
       stage.lasso->property = property.name;
       stage.lasso->kind = "lasso";
-      if (checkLasso(model, *stage.lasso, property).counterexample()) {
-        out.lasso = std::move(stage.lasso);
-        return out;
-      }
-    }
+      if (!checkLasso(model, *stage.lasso, property).counterexample()) return true;
+      out.lasso = std::move(stage.lasso);
+      return false;
+    });
+    if (out.lasso) return out;
   }
   out.why = "no fair violation in " + std::to_string(tried) + " worlds under a round-robin scheduler (" +
             std::to_string(out.states) + " product states)";
