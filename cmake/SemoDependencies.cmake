@@ -16,3 +16,11 @@ find_package(OpenSSL REQUIRED COMPONENTS Crypto)
 add_library(semo_urdfdom INTERFACE)
 target_include_directories(semo_urdfdom SYSTEM INTERFACE ${urdfdom_INCLUDE_DIRS})
 target_link_libraries(semo_urdfdom INTERFACE ${urdfdom_LIBRARIES})
+
+# libbdd-dev (BuDDy 2.4): the decision diagrams of the symbolic liveness search. It ships neither a
+# CMake package nor a pkg-config file: the header and the library are found directly.
+find_path(BUDDY_INCLUDE_DIR bdd.h REQUIRED)
+find_library(BUDDY_LIBRARY bdd REQUIRED)
+add_library(semo_buddy INTERFACE)
+target_include_directories(semo_buddy SYSTEM INTERFACE ${BUDDY_INCLUDE_DIR})
+target_link_libraries(semo_buddy INTERFACE ${BUDDY_LIBRARY})

@@ -140,8 +140,10 @@ Outcome decide(const CompiledModel& cm, std::size_t k, const SearchLimits& limit
     o.method.states = o.states;
     return o;
   }
-  detail::SlicedOutcome sliced = detail::checkSliced(cm, k, limits, options.sliceStates);
+  detail::SlicedOutcome sliced = detail::checkSliced(cm, k, limits, options.sliceStates, options.symbolic);
   LivenessMethod method{true, sliced.keptVariables, sliced.refinements, sliced.states, {}};
+  method.symbolic = sliced.symbolic;
+  method.symbolicStates = sliced.symbolicStates;
   Outcome out{sliced.property, sliced.states, sliced.transitions, true, {}, sliced.reduced, {}, method};
   if (sliced.property.verdict == Verdict::Proven) return out;
   if (sliced.property.verdict == Verdict::Violated) {

@@ -10,6 +10,7 @@
 // Where the rebuilding fails, the rule at fault reads variables the slice left out: they are kept
 // and the next slice searched. A lasso is reported only when checkLasso passes on the whole model.
 #include "sliced_liveness.hpp"
+#include "symbolic_liveness.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -35,6 +36,9 @@ constexpr std::size_t kLoopRounds = 64;        // times the loop is taken waitin
 constexpr std::size_t kFairnessRepairs = 32;
 constexpr std::size_t kEntrySearch = 200000;  // states a search for a way into the loop may visit
 constexpr std::uint64_t kRegionStates = 200'000;  // product states a search of the loop's region may take
+
+// The symbolic searches of one property's slices, all together, may take this long.
+constexpr double kSymbolicSeconds = 60;
 
 using State = std::vector<Value>;
 
@@ -482,7 +486,8 @@ class Concretizer {
 
 }  // namespace
 
-SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const SearchLimits& limits, std::uint64_t sliceStates) {
+SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const SearchLimits& limits, std::uint64_t sliceStates,
+                          bool symbolic) {
   const ir::Model& model = full.model();
   const ir::Property& prop = model.properties.at(property);
   SlicedOutcome out;
@@ -493,6 +498,8 @@ SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const
   sub.maxStates = std::min(limits.maxStates, sliceStates);
   LivenessOptions plain;
   plain.slicing = false;
+  double symbolicSeconds = 0;
+  bool enumerate = true;
   for (std::uint32_t round = 0; round < kMaxRefinements; ++round) {
     Slice slice = sliceModel(model, property, keep);
     out.keptVariables = slice.variables.size();
@@ -502,7 +509,12 @@ SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const
       for (ir::VarId v : slice.variables) keep[v] = 1;
       continue;
     }
-    LivenessResult r = checkLiveness(slice.model, sub, plain);
+    // Slices only grow: once one has been too large to enumerate, the next ones go straight to
+    // the symbolic search.
+    LivenessResult r;
+    r.complete = false;
+    r.limitReached = "--max-states " + std::to_string(sub.maxStates) + " reached by a smaller slice";
+    if (enumerate) r = checkLiveness(slice.model, sub, plain);
     // A developer's trace of the refinement (checker/README.md), on stderr.
     if (std::getenv("SEMO_DEBUG_SLICING") != nullptr) {
       std::string names;
@@ -514,23 +526,53 @@ SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const
     out.states += r.states;
     out.transitions += r.transitions;
     out.reduced = r.reducedProperties > 0;
+    // The slice's lasso: from its explicit search, or, when its states are too many to enumerate,
+    // from a symbolic search (symbolic_liveness.hpp), which also proves it when it has none.
+    std::optional<Trace> sliceLasso;
     if (!r.complete) {
       std::string limit = r.limitReached;
       if (sliceStates < limits.maxStates && limit.rfind("--max-states", 0) == 0) limit = "--slice-states " + std::to_string(sliceStates) + " reached";
-      out.why = "the slice of " + std::to_string(slice.variables.size()) + " of " + std::to_string(model.variables.size()) +
-                " variables did not decide: " + limit;
-      return out;
+      SymbolicLimits symbolicLimits;
+      symbolicLimits.maxMemoryBytes = limits.maxMemoryBytes;
+      symbolicLimits.seconds = kSymbolicSeconds - symbolicSeconds;
+      const bool affordable = symbolic && symbolicLimits.seconds > 1;
+      SymbolicOutcome result = affordable ? decideSymbolically(slice.model, 0, symbolicLimits) : SymbolicOutcome{};
+      if (symbolic && !affordable) result.why = "its time (" + std::to_string(static_cast<int>(kSymbolicSeconds)) + " s for a property) was spent";
+      symbolicSeconds += result.seconds;
+      if (std::getenv("SEMO_DEBUG_SLICING") != nullptr) {
+        std::fprintf(stderr, "[slice]   symbolic: %s, %.0f reachable product states, %u worlds, %.1f s %s\n",
+                     result.kind == SymbolicOutcome::Kind::NoViolation ? "no fair violation"
+                     : result.kind == SymbolicOutcome::Kind::Violation ? "a fair violation" : "gave up",
+                     result.reachable, result.worlds, result.seconds, result.why.c_str());
+      }
+      out.symbolicStates += result.reachable;
+      if (result.kind == SymbolicOutcome::Kind::NoViolation) {
+        out.property.verdict = Verdict::Proven;
+        out.symbolic = true;
+        return out;
+      }
+      if (result.kind != SymbolicOutcome::Kind::Violation || !result.lasso) {
+        out.why = "the slice of " + std::to_string(slice.variables.size()) + " of " + std::to_string(model.variables.size()) +
+                  " variables did not decide: " + limit + (symbolic ? "; the symbolic search gave up: " + result.why : std::string());
+        return out;
+      }
+      sliceLasso = std::move(result.lasso);
+    } else {
+      const PropertyResult& p = r.properties.at(0);
+      if (p.verdict == Verdict::Proven) {
+        out.property.verdict = Verdict::Proven;
+        return out;
+      }
+      if (!p.counterexample) {
+        out.why = "a violation on the slice of " + std::to_string(slice.variables.size()) + " variables came without a lasso";
+        return out;
+      }
+      sliceLasso = p.counterexample;
     }
-    const PropertyResult& p = r.properties.at(0);
-    if (p.verdict == Verdict::Proven) {
-      out.property.verdict = Verdict::Proven;
-      return out;
-    }
-    if (!p.counterexample) {
-      out.why = "a violation on the slice of " + std::to_string(slice.variables.size()) + " variables came without a lasso";
-      return out;
-    }
-    Concretizer concretizer(full, slice, *p.counterexample, prop.settled);
+    // An explicit search that filled its budget found its lasso among the states it explored.
+    const bool filled = r.complete && r.states >= sub.maxStates;
+    enumerate = enumerate && r.complete && !filled;
+    Concretizer concretizer(full, slice, *sliceLasso, prop.settled);
     Trace concrete;
     auto violated = [&] {
       out.states += concretizer.regionStates();
@@ -544,18 +586,11 @@ SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const
     for (std::size_t v = 0; v < keep.size(); ++v) {
       if (concretizer.refine()[v] && !keep[v]) keep[v] = 1, grew = true;
     }
-    // A slice that filled its budget (its lasso found among the states explored) only grows when
-    // refined, and one that cannot grow is final: before giving up, the whole model is searched
-    // where the slice's loop is.
-    const bool last = r.states >= sub.maxStates || !grew;
+    // A slice too large to enumerate, or one that cannot grow, may be the last: the whole model
+    // is searched where the slice's loop is first. A larger slice is then searched symbolically.
+    const bool last = filled || !enumerate || !grew;
     if (last && concretizer.searchRegion(concrete, prop)) return violated();
     out.states += concretizer.regionStates();
-    if (r.states >= sub.maxStates) {
-      out.why = "the slice of " + std::to_string(slice.variables.size()) + " of " + std::to_string(model.variables.size()) +
-                " variables filled " + (sliceStates < limits.maxStates ? "--slice-states " : "--max-states ") +
-                std::to_string(sub.maxStates) + " and its lasso could not be rebuilt: " + concretizer.why();
-      return out;
-    }
     if (!grew) {
       out.why = "the lasso of the slice of " + std::to_string(slice.variables.size()) + " variables could not be rebuilt: " + concretizer.why();
       return out;

@@ -17,10 +17,16 @@ struct SlicedOutcome {
   std::uint32_t refinements = 0;  // slices tried before it
   bool reduced = false;           // the deciding slice was searched up to symmetry
   std::string why;                // when unknown: why no slice decided
+  // A slice too large to enumerate is searched symbolically (symbolic_liveness.hpp): when that
+  // proves it, these say so.
+  bool symbolic = false;
+  double symbolicStates = 0;      // the slice's reachable product states, counted
 };
 
 // Each slice's product is searched within `sliceStates` states (and limits.maxStates): a slice
 // that grows past it leaves the property to the whole product, if the caller searches it.
-SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const SearchLimits& limits, std::uint64_t sliceStates);
+// With `symbolic`, a slice too large to enumerate is searched symbolically (symbolic_liveness.hpp).
+SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const SearchLimits& limits, std::uint64_t sliceStates,
+                          bool symbolic);
 
 }  // namespace semo::checker::detail

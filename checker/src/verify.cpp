@@ -6,6 +6,8 @@
 
 #include <algorithm>
 
+#include <fmt/format.h>
+
 #include "semo/checker/fingerprint.hpp"
 
 namespace semo::checker {
@@ -53,6 +55,10 @@ void explicitSafetyVerdicts(Report& out) {
 // states" or "on the whole model, 1204 product states".
 std::string livenessSearchText(const LivenessMethod& m, std::size_t variables) {
   const std::string states = std::to_string(m.states) + " product states";
+  if (m.sliced && m.symbolic) {
+    return "symbolically (decision diagrams) on a slice of " + std::to_string(m.keptVariables) + " of " + std::to_string(variables) +
+           " variables, " + fmt::format("{:.0f}", m.symbolicStates) + " product states counted, after " + states + " enumerated";
+  }
   if (m.sliced) return "on a slice of " + std::to_string(m.keptVariables) + " of " + std::to_string(variables) + " variables, " + states;
   return "on the whole model, " + states;
 }

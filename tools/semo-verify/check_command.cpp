@@ -59,6 +59,7 @@ checker::VerifyOptions verifyOptions(const CheckOptions& options) {
   v.limits.maxDepth = options.maxDepth;
   v.limits.symmetry = options.symmetry;
   v.liveness.slicing = options.slicing;
+  v.liveness.symbolic = options.symbolic;
   v.liveness.sliceStates = options.sliceStates;
   v.limits.threads = options.threads != 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
   v.safetyOnly = options.safetyOnly;

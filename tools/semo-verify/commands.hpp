@@ -56,6 +56,7 @@ struct CheckOptions {
   std::uint32_t maxDepth = UINT32_MAX;
   bool symmetry = true;
   bool slicing = true;
+  bool symbolic = true;
   std::uint64_t sliceStates = 5'000'000;  // LivenessOptions::sliceStates
   bool safetyOnly = false;
   unsigned threads = 0;  // 0: one per core

@@ -50,6 +50,8 @@ int main(int argc, char** argv) {
                            "Store every state, not one per ordering of interchangeable robots (both searches)");
     cmd->add_flag_callback("--no-slicing", [&check] { check.slicing = false; },
                            "Decide each LTL property on the product of the whole model, not on slices of it refined by counterexamples");
+    cmd->add_flag_callback("--no-symbolic", [&check] { check.symbolic = false; },
+                           "Give up on a slice too large to enumerate instead of searching it as decision diagrams");
     cmd->add_option("--slice-states", check.sliceStates,
                     "Product states one slice of the model may take (default 5000000; --max-states, if lower, bounds it too)")
         ->check(CLI::Range(std::uint64_t{1}, UINT64_MAX));

@@ -29,6 +29,10 @@ struct LivenessMethod {
   std::uint64_t states = 0;       // product states searched for this property (all slices, any fallback)
   std::string slicingGaveUp;      // why no slice decided, when the whole product was searched after them
   bool roundRobin = false;        // the violation was found under a round-robin scheduler (region_lasso.hpp)
+  // Sliced: the deciding slice was too large to enumerate and was searched as decision diagrams
+  // (symbolic_liveness.hpp); symbolicStates counts the reachable product states of the slices so searched.
+  bool symbolic = false;
+  double symbolicStates = 0;
   double seconds = 0;             // spent on this property
 };
 
@@ -53,6 +57,8 @@ struct LivenessOptions {
   // A slice whose product grows past this many states is given up (refining it further would only
   // grow it): the whole product is searched instead, if it may be.
   std::uint64_t sliceStates = 5'000'000;
+  // A slice too large to enumerate is searched as decision diagrams (symbolic_liveness.hpp).
+  bool symbolic = true;
 };
 
 // Each property has its own product; up to limits.threads of them are searched at once, each

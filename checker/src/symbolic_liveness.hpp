@@ -1,0 +1,39 @@
+#pragma once
+// Liveness decided symbolically, for models whose product is too large to enumerate: the product
+// of the model with the Büchi automaton of the property's negation is held as binary decision
+// diagrams (BuDDy), and a fair accepting cycle is looked for as a greatest fixpoint in the manner
+// of Emerson and Lei, with weak fairness as justice, strong fairness as compassion (the treatment
+// of Kesten, Pnueli and Raviv) and a settling world by splitting on the sensed conditions. It says
+// whether a fair violation exists, and builds the lasso of one. See specs/ir.md,
+// "Symbolic search".
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "semo/checker/trace.hpp"
+#include "semo/semantics/ir.hpp"
+
+namespace semo::checker::detail {
+
+struct SymbolicLimits {
+  std::uint64_t maxMemoryBytes = 2ull << 30;  // the decision diagrams' node table may not outgrow it
+  double seconds = 120;                       // give up after this long
+  bool lasso = true;                          // build the lasso of a violation
+};
+
+struct SymbolicOutcome {
+  enum class Kind { NoViolation, Violation, GaveUp };
+  Kind kind = Kind::GaveUp;
+  double reachable = 0;  // product states reachable from the initial ones (counted, not enumerated)
+  std::uint32_t worlds = 0;  // settled-world splits searched (1 when none was needed)
+  std::string why;       // GaveUp: why
+  double seconds = 0;
+  std::optional<Trace> lasso;  // Violation: a lasso of the model (kind "lasso", loopStart set)
+};
+
+// Whether `model` has a fair run violating its property `property` (on a settling world when the
+// property asks for one). Thread-safe: the decision-diagram package is one per process, so calls
+// wait for each other.
+SymbolicOutcome decideSymbolically(const ir::Model& model, std::size_t property, const SymbolicLimits& limits);
+
+}  // namespace semo::checker::detail
