@@ -78,6 +78,40 @@ TEST(SymbolicLiveness, SlicesTooLargeToEnumerateAreDecidedSymbolically) {
   EXPECT_GT(symbolicProofs, 50);
 }
 
+// Eight counters cycle (65,536 values); z may sense p once and leave m = 0 for good. The
+// property reads every counter, so no slice is smaller than the model, far beyond a budget of
+// 1,000 states: the symbolic search proves the model without the way out, and finds the lasso of
+// the one with it.
+TEST(SymbolicLiveness, ASliceFarBeyondTheBudgetIsDecidedSymbolically) {
+  std::string m = "semo-ir 1;\nvar m : 0..1 = 0;\n";
+  std::string sum;
+  for (int k = 1; k <= 8; ++k) {
+    const std::string c = "c" + std::to_string(k);
+    m += "var " + c + " : 0..3 = 0;\nrule tick" + std::to_string(k) + " @fair : true -> " + c + "' = (" + c + " + 1) % 4;\n";
+    sum += (sum.empty() ? "" : " + ") + c;
+  }
+  const std::string property = "property p : always eventually {m == 0 || " + sum + " == 99};\n";
+  const std::string way = "rule go @fair(z) @senses(\"z.p=1\") : m == 0 -> m' = 1;\n";
+  const std::string stay = "rule stay @fair(z) @senses(\"z.p=0\") : m == 0 -> skip;\n";
+  SearchLimits small;
+  small.maxStates = 1000;
+  LivenessOptions options;
+  options.sliceStates = 1000;
+  options.wholeProduct = false;
+  const LivenessResult violated = checkLiveness(test::parseIr(m + way + stay + property), small, options);
+  ASSERT_EQ(violated.properties[0].verdict, Verdict::Violated);
+  const ir::Model withWay = test::parseIr(m + way + stay + property);
+  EXPECT_TRUE(checkLasso(withWay, *violated.properties[0].counterexample, withWay.properties[0]).counterexample());
+  const LivenessResult proven = checkLiveness(test::parseIr(m + stay + property), small, options);
+  EXPECT_EQ(proven.properties[0].verdict, Verdict::Proven);
+  ASSERT_EQ(proven.methods.size(), 1u);
+  EXPECT_TRUE(proven.methods[0].symbolic);
+  EXPECT_GE(proven.methods[0].symbolicStates, 65536.0);  // every value of the counters, with m = 0
+  // Without the symbolic search, the same budget decides nothing.
+  options.symbolic = false;
+  EXPECT_EQ(checkLiveness(test::parseIr(m + stay + property), small, options).properties[0].verdict, Verdict::Unknown);
+}
+
 TEST(SymbolicLiveness, ANodeTableTooSmallGivesUpAndTheNextSearchStillWorks) {
   const ir::Model m = test::parseIr(test::RandomModel(7).text());
   detail::SymbolicLimits tiny;

@@ -146,6 +146,10 @@ nlohmann::json reportJson(const checker::Report& r, const ir::Model& model, cons
           search["ofVariables"] = model.variables.size();
           search["refinements"] = m.refinements;
         }
+        if (m.symbolic) {
+          search["on"] = "slice, symbolically";
+          search["symbolicProductStates"] = m.symbolicStates;
+        }
         if (!m.slicingGaveUp.empty()) search["slicingGaveUp"] = m.slicingGaveUp;
         jp["search"] = search;
       }

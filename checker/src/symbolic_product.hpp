@@ -1,0 +1,556 @@
+#pragma once
+// The product of a model with a Büchi automaton as binary decision diagrams (BuDDy): the relations
+// of the rules and of the automaton, images and preimages, the fair accepting states (an
+// Emerson-Lei fixpoint), and concrete states and steps for building a lasso. Used by
+// symbolic_liveness.cpp, which owns the decision-diagram package while it runs.
+#include <bdd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "semo/checker/buchi.hpp"
+#include "semo/checker/fairness.hpp"
+#include "semo/semantics/ir.hpp"
+
+namespace semo::checker::detail {
+
+using Clock = std::chrono::steady_clock;
+
+// BuDDy keeps one package per process (symbolic_liveness.cpp holds a lock for a whole search), and
+// its error hook records what went wrong (a full node table) instead of ending the process, as
+// BuDDy's default hook does.
+inline int packageError = 0;
+inline void recordError(int code) {
+  if (packageError == 0) packageError = code;
+}
+
+struct GiveUp : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// The values an expression may take, each with the condition on the current state under which it
+// takes it (the conditions are disjoint). Variables have small ranges, so an expression is carried
+// as this table rather than as bit vectors: every operator is then evaluated exactly as the
+// explicit engine evaluates it, value by value.
+using Values = std::map<std::int64_t, bdd>;
+inline constexpr std::size_t kMaxValues = 4096;
+
+inline std::int64_t evaluate(ir::Op op, std::int64_t a, std::int64_t b) {
+  switch (op) {
+    case ir::Op::Add: return a + b;
+    case ir::Op::Sub: return a - b;
+    case ir::Op::Mul: return a * b;
+    case ir::Op::Div: return b == 0 ? 0 : a / b;  // total, as in the explicit and SMT engines
+    case ir::Op::Mod: return b == 0 ? 0 : a % b;
+    case ir::Op::Min: return std::min(a, b);
+    case ir::Op::Max: return std::max(a, b);
+    case ir::Op::Eq: return a == b;
+    case ir::Op::Ne: return a != b;
+    case ir::Op::Lt: return a < b;
+    case ir::Op::Le: return a <= b;
+    case ir::Op::Gt: return a > b;
+    case ir::Op::Ge: return a >= b;
+    case ir::Op::And: return a != 0 && b != 0;
+    case ir::Op::Or: return a != 0 || b != 0;
+    case ir::Op::Implies: return a == 0 || b != 0;
+    default: return 0;
+  }
+}
+
+// The model and the automaton as decision diagrams. Each variable gets the bits of its offset from
+// its minimum (most significant first); each bit has a current and a next copy, side by side in
+// the variable order, so that a step's relation stays small. The automaton's state comes first.
+class SymbolicProduct {
+ public:
+  SymbolicProduct(const ir::Model& model, const Buchi& ba, const Fairness& fairness, Clock::time_point deadline)
+      : model_(model), ba_(ba), fairness_(fairness), deadline_(deadline) {
+    int bits = 0;
+    auto layOut = [&bits](std::int64_t min, std::int64_t max) {
+      Layout l{bits, 0, min, max};
+      while ((std::int64_t{1} << l.bits) < max - min + 1) ++l.bits;
+      bits += l.bits;
+      return l;
+    };
+    automaton_ = layOut(0, static_cast<std::int64_t>(ba.states.size()) - 1);
+    // A robot's variables side by side (the team's first): most rules read and write one robot's
+    // state, and a relation over nearby bits stays small.
+    std::vector<ir::VarId> order(model.variables.size());
+    for (ir::VarId v = 0; v < order.size(); ++v) order[v] = v;
+    std::stable_sort(order.begin(), order.end(), [&](ir::VarId a, ir::VarId b) { return model.variables[a].robot < model.variables[b].robot; });
+    layouts_.resize(model.variables.size());
+    for (ir::VarId v : order) layouts_[v] = layOut(model.variables[v].min, model.variables[v].max);
+    bdd_setvarnum(std::max(2, 2 * bits));
+    check();
+    buildAutomaton();
+    for (std::uint32_t r = 0; r < model.rules.size(); ++r) rules_.push_back(compileRule(model.rules[r]));
+    enabledFair_ = bddfalse;
+    for (std::uint32_t r = 0; r < model.rules.size(); ++r) {
+      if (model.rules[r].weaklyFair || model.rules[r].stronglyFair) enabledFair_ |= rules_[r].guard;
+    }
+    groupEnabled_.assign(fairness.groups(), bddfalse);
+    for (std::uint32_t g = 0; g < fairness.groups(); ++g) {
+      for (std::uint32_t r : fairness.members[g]) groupEnabled_[g] |= rules_[r].guard;
+    }
+    std::vector<int> all;
+    for (int b = 0; b < bits; ++b) all.push_back(2 * b);
+    currentBits_ = bdd_makeset(all.data(), static_cast<int>(all.size()));
+    check();
+  }
+
+  ~SymbolicProduct() {
+    for (Rule& r : rules_) bdd_freepair(r.toNext), bdd_freepair(r.toCurrent);
+    bdd_freepair(automatonToNext_);
+    bdd_freepair(automatonToCurrent_);
+  }
+  SymbolicProduct(const SymbolicProduct&) = delete;
+  SymbolicProduct& operator=(const SymbolicProduct&) = delete;
+
+  // The product states reachable from the initial ones (forward, breadth-first).
+  bdd reachable() {
+    bdd initial = bddtrue;
+    for (ir::VarId v = 0; v < model_.variables.size(); ++v) initial &= cube(layouts_[v], model_.variables[v].init, false);
+    bdd start = bddfalse;
+    for (std::uint32_t q = 0; q < ba_.states.size(); ++q) {
+      if (ba_.states[q].initial) start |= cube(automaton_, q, false);
+    }
+    bdd reach = initial & start & labels_;
+    bdd frontier = reach;
+    // Chaining: each rule's product steps are added to the frontier before the next rule is
+    // applied, so a round covers many interleavings of independent robots at once.
+    int rounds = 0;
+    while (frontier != bddfalse) {
+      bdd grown = frontier | automatonStep(frontier & !enabledFair_);  // time passing where nothing fair can step
+      for (const Rule& r : rules_) {
+        grown |= automatonStep(bdd_replace(bdd_appex(grown, r.relation, bddop_and, r.currentSet), r.toCurrent));
+        check();
+      }
+      frontier = grown & !reach;
+      reach |= frontier;
+      if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) std::fprintf(stderr, "[symbolic] round %d: %.0f states, %d nodes\n", ++rounds, count(reach), bdd_nodecount(reach));
+    }
+    return reach;
+  }
+
+  // The automaton's move on reading the model's new state (the model's step already taken).
+  bdd automatonStep(const bdd& moved) {
+    const bdd out = bdd_replace(bdd_appex(moved, automatonRelation_, bddop_and, automatonCurrent_), automatonToCurrent_) & labels_;
+    check();
+    return out;
+  }
+
+  // Whether a step leaves a variable's declared range from one of `states` (the explicit engine
+  // stops with an error there; this search then gives up instead of deciding).
+  bool overflowsFrom(const bdd& states) const {
+    for (const Rule& r : rules_) {
+      if ((states & r.overflow) != bddfalse) return true;
+    }
+    return false;
+  }
+
+  [[nodiscard]] double count(const bdd& states) const { return bdd_satcountset(states, currentBits_); }
+
+  // The states of `within` from which a fair accepting cycle through `within` exists, the loop
+  // using only the rules `allowed` marks (a settled world restricts the loop, not the way to it):
+  // the greatest fixpoint of Emerson and Lei. At the fixpoint every state has a successor in the
+  // set and reaches, inside it, each acceptance set of the automaton, for each weakly fair group a
+  // state where the group is disabled or takes a step, and for each strongly fair rule enabled
+  // there a state that takes it (or the rule is never enabled in the set): a bottom strongly
+  // connected component of the set is then a fair accepting loop. Conversely the states of any
+  // such loop satisfy all of this, so the set is empty exactly when no such loop exists.
+  bdd fairStates(bdd z, const std::vector<char>& allowed) {
+    std::vector<bdd> acceptance;
+    for (std::size_t i = 0; i < ba_.acceptanceSets; ++i) acceptance.push_back(acceptanceSet(i));
+    // A group found met by a set stays met while the set does not shrink: `version` counts the
+    // shrinkings, and a group met at the current version is not looked at again.
+    std::uint64_t version = 0;
+    std::vector<std::uint64_t> metAt(fairness_.groups(), UINT64_MAX);
+    while (true) {
+      const bdd old = z;
+      z &= predecessors(z, allowed, nullptr);
+      for (const bdd& set : acceptance) z = until(z, z & set, allowed);
+      if (z != old) ++version;
+      bdd zAfter = automatonPredecessors(z);  // shared by the groups until z shrinks
+      bdd zAfterOf = z;
+      for (std::uint32_t g = 0; g < fairness_.groups() && z != bddfalse; ++g) {
+        if (metAt[g] == version || (z & groupEnabled_[g]) == bddfalse) continue;
+        if (zAfterOf != z) zAfter = automatonPredecessors(z), zAfterOf = z;
+        const bdd taken = z & modelPredecessors(zAfter, allowed, &fairness_.members[g]);
+        const bdd before = z;
+        if (fairness_.strong[g] != 0) {
+          z = (z & !groupEnabled_[g]) | until(z, taken, allowed);
+        } else {
+          const bdd good = (z & !groupEnabled_[g]) | taken;
+          if (good != z) z = until(z, good, allowed);
+        }
+        if (z == before) metAt[g] = version;
+        else ++version;
+      }
+      if (z == old) return z;
+    }
+  }
+
+  // Whether rule r steps from a state of `z` to one of `z` (product steps; `zAfter` is
+  // automatonPredecessors(z)).
+  bool stepsWithin(const bdd& z, const bdd& zAfter, std::uint32_t r) {
+    const bdd from = bdd_appex(rules_[r].relation, bdd_replace(zAfter, rules_[r].toNext), bddop_and, rules_[r].nextSet);
+    check();
+    return (z & from) != bddfalse;
+  }
+
+  // The states with a product step into `z`: by the rules `only` lists (all when null) that
+  // `allowed` marks, or, with all of them, by time passing.
+  bdd predecessors(const bdd& z, const std::vector<char>& allowed, const std::vector<std::uint32_t>* only) {
+    return modelPredecessors(automatonPredecessors(z), allowed, only);
+  }
+
+  // The automaton moves on reading the model's new state: a product step into `z` is a model step
+  // into these (the model's new state, the automaton's state before).
+  bdd automatonPredecessors(const bdd& z) {
+    const bdd out = bdd_appex(automatonRelation_, bdd_replace(z, automatonToNext_), bddop_and, automatonNext_);
+    check();
+    return out;
+  }
+
+  bdd modelPredecessors(const bdd& afterModel, const std::vector<char>& allowed, const std::vector<std::uint32_t>* only) {
+    bdd out = bddfalse;
+    auto back = [&](std::uint32_t r) {
+      if (allowed[r] == 0) return;
+      out |= bdd_appex(rules_[r].relation, bdd_replace(afterModel, rules_[r].toNext), bddop_and, rules_[r].nextSet);
+      check();
+    };
+    if (only != nullptr) {
+      for (std::uint32_t r : *only) back(r);
+      return out;
+    }
+    for (std::uint32_t r = 0; r < rules_.size(); ++r) back(r);
+    return out | (afterModel & !enabledFair_);
+  }
+
+  // The states of `within` reachable from `from` by product steps of the rules `allowed` marks.
+  bdd forwardClosure(const bdd& from, const bdd& within, const std::vector<char>& allowed) {
+    bdd reached = from & within;
+    bdd frontier = reached;
+    while (frontier != bddfalse) {  // chained, as the reachable states
+      bdd grown = frontier | (automatonStep(frontier & !enabledFair_) & within);
+      for (std::uint32_t r = 0; r < rules_.size(); ++r) {
+        if (allowed[r] == 0) continue;
+        grown |= automatonStep(bdd_replace(bdd_appex(grown, rules_[r].relation, bddop_and, rules_[r].currentSet), rules_[r].toCurrent)) & within;
+        check();
+      }
+      frontier = grown & !reached;
+      reached |= frontier;
+    }
+    return reached;
+  }
+
+  // E[z U goal]: the states of z from which a path inside z reaches `goal` (a subset of z).
+  // Chained, as the forward search: what one rule finds is looked back from by the next.
+  bdd until(const bdd& z, const bdd& goal, const std::vector<char>& allowed) {
+    bdd reached = goal;
+    bdd frontier = goal;
+    while (frontier != bddfalse) {
+      bdd after = automatonPredecessors(frontier);
+      bdd fresh = z & after & !enabledFair_ & !reached;  // time passing
+      reached |= fresh;
+      after |= automatonPredecessors(fresh);
+      for (std::uint32_t r = 0; r < rules_.size(); ++r) {
+        if (allowed[r] == 0) continue;
+        const bdd found = z & bdd_appex(rules_[r].relation, bdd_replace(after, rules_[r].toNext), bddop_and, rules_[r].nextSet) & !reached;
+        check();
+        if (found == bddfalse) continue;
+        reached |= found;
+        fresh |= found;
+        after |= automatonPredecessors(found);
+      }
+      frontier = fresh;
+    }
+    return reached;
+  }
+
+  // One state of the product, with every value.
+  struct Concrete {
+    std::vector<std::int64_t> values;
+    std::uint32_t automaton = 0;
+    bool operator==(const Concrete&) const = default;
+  };
+  struct Move {
+    std::uint32_t rule;  // kTimePasses: no rule (the state stays, the automaton moves)
+    std::uint32_t branch;
+    Concrete after;
+  };
+  static constexpr std::uint32_t kTimePasses = 0xffffffffu;
+
+  Concrete initialState(const bdd& within) {
+    Concrete c;
+    for (const ir::Variable& v : model_.variables) c.values.push_back(v.init);
+    for (std::uint32_t q = 0; q < ba_.states.size(); ++q) {
+      c.automaton = q;
+      if (ba_.states[q].initial && labelHolds(q, c.values) && contains(within, c)) return c;
+    }
+    throw std::logic_error("symbolic lasso: no initial state in the set");
+  }
+
+  Concrete pick(const bdd& set) const {
+    const bdd one = bdd_satoneset(set, currentBits_, bddfalse);
+    Concrete c;
+    auto read = [&](const Layout& l) {
+      std::int64_t offset = 0;
+      for (int i = 0; i < l.bits; ++i) offset = offset << 1 | ((one & bdd_nithvar(bit(l, i, false))) == bddfalse ? 1 : 0);
+      return l.min + offset;
+    };
+    for (const Layout& l : layouts_) c.values.push_back(read(l));
+    c.automaton = static_cast<std::uint32_t>(read(automaton_));
+    return c;
+  }
+
+  bdd cubeOf(const Concrete& c) const {
+    bdd out = cube(automaton_, c.automaton, false);
+    for (std::size_t v = 0; v < layouts_.size(); ++v) out &= cube(layouts_[v], c.values[v], false);
+    return out;
+  }
+  bool contains(const bdd& set, const Concrete& c) const { return (set & cubeOf(c)) != bddfalse; }
+
+  // The product steps from `c` by the rules `allowed` marks (and time passing where it may).
+  std::vector<Move> moves(const Concrete& c, const std::vector<char>& allowed) const {
+    std::vector<Move> out;
+    bool fairEnabled = false;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> vias;
+    std::vector<std::vector<std::int64_t>> afters;
+    for (std::uint32_t r = 0; r < model_.rules.size(); ++r) {
+      const ir::Rule& rule = model_.rules[r];
+      if (evaluateOn(rule.guard, c.values) == 0) continue;
+      fairEnabled = fairEnabled || rule.weaklyFair || rule.stronglyFair;
+      if (allowed[r] == 0) continue;
+      for (std::uint32_t b = 0; b < rule.branches.size(); ++b) {
+        std::vector<std::int64_t> next = c.values;
+        for (const ir::Assignment& a : rule.branches[b].assignments) next[a.var] = evaluateOn(a.value, c.values);
+        vias.push_back({r, b});
+        afters.push_back(std::move(next));
+      }
+    }
+    if (!fairEnabled) {
+      vias.push_back({kTimePasses, 0});
+      afters.push_back(c.values);
+    }
+    for (std::size_t k = 0; k < vias.size(); ++k) {
+      for (std::uint32_t q : ba_.states[c.automaton].successors) {
+        if (labelHolds(q, afters[k])) out.push_back({vias[k].first, vias[k].second, {afters[k], q}});
+      }
+    }
+    return out;
+  }
+
+  [[nodiscard]] const Fairness& fairness() const { return fairness_; }
+  [[nodiscard]] const bdd& groupEnabled(std::uint32_t g) const { return groupEnabled_[g]; }
+  bdd acceptanceSet(std::size_t i) const {
+    bdd set = bddfalse;
+    for (std::uint32_t q = 0; q < ba_.states.size(); ++q) {
+      if ((ba_.states[q].acceptance >> i & 1) != 0) set |= cube(automaton_, q, false);
+    }
+    return set;
+  }
+  [[nodiscard]] std::size_t acceptanceSets() const { return ba_.acceptanceSets; }
+  [[nodiscard]] std::size_t rules() const { return rules_.size(); }
+
+ private:
+  std::int64_t evaluateOn(const ir::Expr& e, const std::vector<std::int64_t>& values) const {
+    switch (e.op) {
+      case ir::Op::Const: return e.value;
+      case ir::Op::Var: return values[static_cast<std::size_t>(e.value)];
+      case ir::Op::Not: return evaluateOn(e.args[0], values) == 0;
+      case ir::Op::Neg: return -evaluateOn(e.args[0], values);
+      case ir::Op::Ite: return evaluateOn(e.args[0], values) != 0 ? evaluateOn(e.args[1], values) : evaluateOn(e.args[2], values);
+      default: return evaluate(e.op, evaluateOn(e.args[0], values), evaluateOn(e.args[1], values));
+    }
+  }
+
+  bool labelHolds(std::uint32_t q, const std::vector<std::int64_t>& values) const {
+    const BuchiState& s = ba_.states[q];
+    for (std::size_t k = 0; k < ba_.atoms.size(); ++k) {
+      const bool holds = evaluateOn(ba_.atoms[k], values) != 0;
+      if ((s.mustHold >> k & 1) != 0 && !holds) return false;
+      if ((s.mustFail >> k & 1) != 0 && holds) return false;
+    }
+    return true;
+  }
+
+  struct Layout {
+    int first = 0, bits = 0;
+    std::int64_t min = 0, max = 0;
+  };
+  struct Rule {
+    bdd guard;       // enabled, on the current state
+    bdd relation;    // guard and outcomes, on the current bits and the next bits of what it assigns
+    bdd currentSet, nextSet;  // the bits of what it assigns
+    bddPair* toNext = nullptr;
+    bddPair* toCurrent = nullptr;
+    bdd overflow;    // current states where an outcome leaves a declared range
+  };
+
+  void check() const {
+    if (packageError != 0) throw GiveUp(std::string("the decision diagrams: ") + bdd_errstring(packageError));
+    if (Clock::now() > deadline_) throw GiveUp("the time given to the symbolic search ran out");
+  }
+
+  static int bit(const Layout& l, int i, bool next) { return 2 * (l.first + i) + (next ? 1 : 0); }
+
+  static bdd cube(const Layout& l, std::int64_t value, bool next) {
+    bdd c = bddtrue;
+    const std::int64_t offset = value - l.min;
+    for (int i = 0; i < l.bits; ++i) {
+      const bool one = (offset >> (l.bits - 1 - i) & 1) != 0;
+      c &= one ? bdd_ithvar(bit(l, i, next)) : bdd_nithvar(bit(l, i, next));
+    }
+    return c;
+  }
+
+  static bdd bitSet(const Layout& l, bool next) {
+    std::vector<int> v;
+    for (int i = 0; i < l.bits; ++i) v.push_back(bit(l, i, next));
+    return bdd_makeset(v.data(), static_cast<int>(v.size()));
+  }
+
+  static void addPairs(bddPair* pair, const Layout& l, bool toNext) {
+    for (int i = 0; i < l.bits; ++i) bdd_setpair(pair, bit(l, i, !toNext), bit(l, i, toNext));
+  }
+
+  static bdd truth(const Values& v) {
+    bdd t = bddfalse;
+    for (const auto& [value, when] : v) {
+      if (value != 0) t |= when;
+    }
+    return t;
+  }
+
+  static void add(Values& to, std::int64_t value, const bdd& when) {
+    if (when == bddfalse) return;
+    auto [it, added] = to.try_emplace(value, when);
+    if (!added) it->second |= when;
+    if (to.size() > kMaxValues) throw GiveUp("an expression takes more than 4,096 values");
+  }
+
+  Values values(const ir::Expr& e) {
+    Values out;
+    switch (e.op) {
+      case ir::Op::Const: add(out, e.value, bddtrue); return out;
+      case ir::Op::Var: {
+        const Layout& l = layouts_[static_cast<ir::VarId>(e.value)];
+        for (std::int64_t k = l.min; k <= l.max; ++k) add(out, k, cube(l, k, false));
+        return out;
+      }
+      case ir::Op::Not:
+        add(out, 1, !truth(values(e.args[0])));
+        add(out, 0, truth(values(e.args[0])));
+        return out;
+      case ir::Op::Neg:
+        for (const auto& [value, when] : values(e.args[0])) add(out, -value, when);
+        return out;
+      case ir::Op::Ite: {
+        const bdd c = truth(values(e.args[0]));
+        for (const auto& [value, when] : values(e.args[1])) add(out, value, c & when);
+        for (const auto& [value, when] : values(e.args[2])) add(out, value, (!c) & when);
+        return out;
+      }
+      default: {
+        const Values a = values(e.args[0]);
+        const Values b = values(e.args[1]);
+        for (const auto& [x, wx] : a) {
+          for (const auto& [y, wy] : b) add(out, evaluate(e.op, x, y), wx & wy);
+        }
+        check();
+        return out;
+      }
+    }
+  }
+
+  void buildAutomaton() {
+    automatonRelation_ = bddfalse;
+    labels_ = bddfalse;
+    for (std::uint32_t q = 0; q < ba_.states.size(); ++q) {
+      const BuchiState& s = ba_.states[q];
+      for (std::uint32_t t : s.successors) automatonRelation_ |= cube(automaton_, q, false) & cube(automaton_, t, true);
+      bdd label = bddtrue;
+      for (std::size_t k = 0; k < ba_.atoms.size(); ++k) {
+        if ((s.mustHold >> k & 1) != 0) label &= truth(values(ba_.atoms[k]));
+        if ((s.mustFail >> k & 1) != 0) label &= !truth(values(ba_.atoms[k]));
+      }
+      labels_ |= cube(automaton_, q, false) & label;
+    }
+    automatonCurrent_ = bitSet(automaton_, false);
+    automatonNext_ = bitSet(automaton_, true);
+    automatonToNext_ = bdd_newpair();
+    automatonToCurrent_ = bdd_newpair();
+    addPairs(automatonToNext_, automaton_, true);
+    addPairs(automatonToCurrent_, automaton_, false);
+    check();
+  }
+
+  Rule compileRule(const ir::Rule& rule) {
+    Rule r;
+    r.guard = truth(values(rule.guard));
+    std::vector<ir::VarId> assigned;
+    for (const ir::Branch& b : rule.branches) {
+      for (const ir::Assignment& a : b.assignments) assigned.push_back(a.var);
+    }
+    std::sort(assigned.begin(), assigned.end());
+    assigned.erase(std::unique(assigned.begin(), assigned.end()), assigned.end());
+    r.toNext = bdd_newpair();
+    r.toCurrent = bdd_newpair();
+    r.currentSet = bddtrue;
+    r.nextSet = bddtrue;
+    for (ir::VarId v : assigned) {
+      addPairs(r.toNext, layouts_[v], true);
+      addPairs(r.toCurrent, layouts_[v], false);
+      r.currentSet &= bitSet(layouts_[v], false);
+      r.nextSet &= bitSet(layouts_[v], true);
+    }
+    bdd outcomes = bddfalse;
+    r.overflow = bddfalse;
+    for (const ir::Branch& b : rule.branches) {
+      bdd outcome = bddtrue;
+      for (ir::VarId v : assigned) {
+        const Layout& l = layouts_[v];
+        const ir::Assignment* a = nullptr;
+        for (const ir::Assignment& x : b.assignments) {
+          if (x.var == v) a = &x;  // the last one counts, as in the explicit engine
+        }
+        bdd next = bddfalse;
+        if (a == nullptr) {
+          for (std::int64_t k = l.min; k <= l.max; ++k) next |= cube(l, k, false) & cube(l, k, true);
+        } else {
+          for (const auto& [value, when] : values(a->value)) {
+            if (value < l.min || value > l.max) r.overflow |= when;
+            else next |= when & cube(l, value, true);
+          }
+        }
+        outcome &= next;
+      }
+      outcomes |= outcome;
+      check();
+    }
+    r.relation = r.guard & outcomes;
+    r.overflow &= r.guard;
+    check();
+    return r;
+  }
+
+  const ir::Model& model_;
+  const Buchi& ba_;
+  const Fairness& fairness_;
+  const Clock::time_point deadline_;
+  Layout automaton_;
+  std::vector<Layout> layouts_;
+  std::vector<Rule> rules_;
+  bdd automatonRelation_, labels_, automatonCurrent_, automatonNext_, enabledFair_, currentBits_;
+  bddPair* automatonToNext_ = nullptr;
+  bddPair* automatonToCurrent_ = nullptr;
+  std::vector<bdd> groupEnabled_;
+};
+
+}  // namespace semo::checker::detail
