@@ -120,18 +120,18 @@ class SymbolicProduct {
       if (ba_.states[q].initial) start |= cube(automaton_, q, false);
     }
     bdd reach = initial & start & labels_;
-    bdd frontier = reach;
-    // Chaining: each rule's product steps are added to the frontier before the next rule is
-    // applied, so a round covers many interleavings of independent robots at once.
+    // Each rule's product steps from everything reached so far, added before the next rule looks
+    // (chaining): a set closed under many steps has a small diagram, where a frontier, or a
+    // frontier grown rule by rule, often has a large one.
     int rounds = 0;
-    while (frontier != bddfalse) {
-      bdd grown = frontier | automatonStep(frontier & !enabledFair_);  // time passing where nothing fair can step
+    bdd before = bddfalse;
+    while (reach != before) {
+      before = reach;
+      reach |= automatonStep(reach & !enabledFair_);  // time passing where nothing fair can step
       for (const Rule& r : rules_) {
-        grown |= automatonStep(bdd_replace(bdd_appex(grown, r.relation, bddop_and, r.currentSet), r.toCurrent));
+        reach |= automatonStep(bdd_replace(bdd_appex(reach, r.relation, bddop_and, r.currentSet), r.toCurrent));
         check();
       }
-      frontier = grown & !reach;
-      reach |= frontier;
       if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) std::fprintf(stderr, "[symbolic] round %d: %.0f states, %d nodes\n", ++rounds, count(reach), bdd_nodecount(reach));
     }
     return reach;
@@ -235,40 +235,36 @@ class SymbolicProduct {
   // The states of `within` reachable from `from` by product steps of the rules `allowed` marks.
   bdd forwardClosure(const bdd& from, const bdd& within, const std::vector<char>& allowed) {
     bdd reached = from & within;
-    bdd frontier = reached;
-    while (frontier != bddfalse) {  // chained, as the reachable states
-      bdd grown = frontier | (automatonStep(frontier & !enabledFair_) & within);
+    bdd before = bddfalse;
+    while (reached != before) {  // chained on everything reached, as the reachable states
+      before = reached;
+      reached |= automatonStep(reached & !enabledFair_) & within;
       for (std::uint32_t r = 0; r < rules_.size(); ++r) {
         if (allowed[r] == 0) continue;
-        grown |= automatonStep(bdd_replace(bdd_appex(grown, rules_[r].relation, bddop_and, rules_[r].currentSet), rules_[r].toCurrent)) & within;
+        reached |= automatonStep(bdd_replace(bdd_appex(reached, rules_[r].relation, bddop_and, rules_[r].currentSet), rules_[r].toCurrent)) & within;
         check();
       }
-      frontier = grown & !reached;
-      reached |= frontier;
     }
     return reached;
   }
 
   // E[z U goal]: the states of z from which a path inside z reaches `goal` (a subset of z).
-  // Chained, as the forward search: what one rule finds is looked back from by the next.
+  // Chained on everything reached, as the forward search.
   bdd until(const bdd& z, const bdd& goal, const std::vector<char>& allowed) {
     bdd reached = goal;
-    bdd frontier = goal;
-    while (frontier != bddfalse) {
-      bdd after = automatonPredecessors(frontier);
-      bdd fresh = z & after & !enabledFair_ & !reached;  // time passing
-      reached |= fresh;
-      after |= automatonPredecessors(fresh);
+    bdd before = bddfalse;
+    while (reached != before) {
+      before = reached;
+      bdd after = automatonPredecessors(reached);
+      reached |= z & after & !enabledFair_;  // time passing
       for (std::uint32_t r = 0; r < rules_.size(); ++r) {
         if (allowed[r] == 0) continue;
         const bdd found = z & bdd_appex(rules_[r].relation, bdd_replace(after, rules_[r].toNext), bddop_and, rules_[r].nextSet) & !reached;
         check();
         if (found == bddfalse) continue;
         reached |= found;
-        fresh |= found;
-        after |= automatonPredecessors(found);
+        after = automatonPredecessors(reached);
       }
-      frontier = fresh;
     }
     return reached;
   }
