@@ -1,5 +1,6 @@
 // Engines never disagree: every example, seeded defect (and twin) and hand-written IR model is
-// checked by every engine that applies (explicit with and without symmetry and slicing, smt, auto),
+// checked by every engine that applies (explicit with and without symmetry and slicing, slices
+// searched symbolically, smt, auto),
 // through the real CLI's JSON, and a property two engines both decide gets the same verdict from
 // both. Group formation for every crash set (smt) must agree with the explicit engine's invariants
 // of the same block. And every property is decided by some engine, but for the documented cases.
@@ -62,6 +63,8 @@ const std::vector<std::pair<std::string, std::string>> kEngines = {
     {"explicit, slicing only", "--max-states 1000000 --no-symmetry"},
     {"smt", "--engine smt --max-states 1000000"},
     {"auto", "--engine auto"},
+    // Every slice too large for one state: each is searched symbolically (decision diagrams).
+    {"symbolic slices", "--max-states 1000000 --slice-states 1"},
 };
 
 struct Verdicts {
