@@ -39,8 +39,9 @@ case "$mode" in
     build build -DCMAKE_BUILD_TYPE=Release -DSEMO_BUILD_TESTS=OFF
     ./build/tools/semo-verify lint "${scouting[@]}"
     # The whole scouting model is beyond the explicit engine: --engine auto sees that within its
-    # budget and proves the safety properties with Z3 (BMC, k-induction, IC3). Its LTL properties
-    # stay unchecked, so the result is partial (exit 3) and says so.
+    # budget and proves the safety properties with Z3 (BMC, k-induction, IC3); the LTL properties
+    # are decided on slices (enumerated, or symbolically when large). mode_agreement stays unknown,
+    # so the result is partial (exit 3) and says so.
     ./build/tools/semo-verify check "${scouting[@]}" --engine auto || [ $? -eq 3 ]
     # Then each robot's dataflow task graph: every scenario consistent and deadlock free, with its
     # schedule, period and buffer bounds proven (Z3).
