@@ -2,8 +2,9 @@
 # Benchmark (not a test): the LTL properties of scouting and patrol, property by property, with
 # each reduction on and off: slicing (cone of influence refined by counterexamples) and symmetry.
 # Prints, per configuration, the wall time and peak memory of the whole check, and per property
-# its verdict, where it was searched (slice of k variables or whole model), its product states and
-# seconds. Then SPIN's partial-order reduction on the exported safety model of each example:
+# its verdict, where it was searched (slice of k variables, enumerated or symbolic, or whole model),
+# its product states (counted, for a symbolic slice) and seconds; swarm10's liveness with the
+# symbolic search of large slices on and off. Then SPIN's partial-order reduction on the exported safety model of each example:
 # states stored by pan with and without it (-DNOREDUCE), the reduction factor, for comparison
 # (the export is one process whose every step reads and writes shared globals, which leaves SPIN's
 # reduction nothing to prune: see bench/README.md).
@@ -31,11 +32,17 @@ for p in d["properties"]:
         continue
     s = p.get("search", {})
     where = "-"
+    states = s.get("productStates", "-")
     if s.get("on") == "slice":
         where = "slice %d/%d, %d refinements" % (s["variables"], s["ofVariables"], s["refinements"])
+    elif s.get("on") == "slice, symbolically":
+        where = "symbolic slice %d/%d, %d refinements" % (s["variables"], s["ofVariables"], s["refinements"])
+        states = "%.3g" % s["symbolicProductStates"]
+    elif s.get("on") == "round-robin":
+        where = "robots taking turns"
     elif s:
         where = "whole model"
-    print("    %-44s %-8s %-32s %12s %9.2f" % (p["name"], p["verdict"], where, s.get("productStates", "-"), s.get("seconds", 0.0)))
+    print("    %-44s %-8s %-36s %12s %9.2f" % (p["name"], p["verdict"], where, states, s.get("seconds", 0.0)))
 '
 }
 
@@ -95,6 +102,13 @@ for example in scouting patrol; do
   bench_check "symmetry, no slicing" "${model[@]}" "${engine[@]}" --no-slicing
   bench_check "no slicing, no symmetry" "${model[@]}" "${engine[@]}" --no-slicing --no-symmetry
 done
+
+# A slice that outgrows --slice-states is searched symbolically (decision diagrams) unless
+# --no-symbolic: swarm10 without symmetry, its slices limited to 2,000,000 states.
+echo "== swarm10 without symmetry, --slice-states 2000000: the symbolic search of larger slices on and off"
+model=("$here/specs/examples/swarm/swarm10.semo" --strategy "$here/specs/examples/swarm/strategy.xml")
+bench_check "symbolic search on" "${model[@]}" --no-symmetry --slice-states 2000000
+bench_check "symbolic search off" "${model[@]}" --no-symmetry --slice-states 2000000 --no-symbolic
 
 echo "== SPIN's partial-order reduction on the exported safety model (pan -DSAFETY, states stored)"
 for example in patrol deployment chase scouting; do
