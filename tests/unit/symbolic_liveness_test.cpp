@@ -67,7 +67,9 @@ TEST(SymbolicLiveness, SlicesTooLargeToEnumerateAreDecidedSymbolically) {
       const Verdict v = sliced.properties[k].verdict;
       // Without the whole product, a violation whose slice lasso cannot be rebuilt stays unknown;
       // whatever is decided must be what the explicit search decides.
-      if (v != Verdict::Unknown) EXPECT_EQ(v, reference.properties[k].verdict);
+      if (v != Verdict::Unknown) {
+        EXPECT_EQ(v, reference.properties[k].verdict);
+      }
       if (v == Verdict::Proven && sliced.methods[k].symbolic) ++symbolicProofs;
       if (v == Verdict::Violated) {
         ASSERT_TRUE(sliced.properties[k].counterexample.has_value());
