@@ -535,6 +535,7 @@ SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const
       SymbolicLimits symbolicLimits;
       symbolicLimits.maxMemoryBytes = limits.maxMemoryBytes;
       symbolicLimits.seconds = kSymbolicSeconds - symbolicSeconds;
+      symbolicLimits.onProgress = limits.onProgress;
       const bool affordable = symbolic && symbolicLimits.seconds > 1;
       SymbolicOutcome result = affordable ? decideSymbolically(slice.model, 0, symbolicLimits) : SymbolicOutcome{};
       if (symbolic && !affordable) result.why = "its time (" + std::to_string(static_cast<int>(kSymbolicSeconds)) + " s for a property) was spent";

@@ -220,7 +220,7 @@ SymbolicOutcome decideSymbolically(const ir::Model& model, std::size_t property,
   bdd_setmaxnodenum(static_cast<int>(nodes));
   bdd_setcacheratio(4);
   try {
-    SymbolicProduct product(model, ba, fairness, deadline);
+    SymbolicProduct product(model, ba, fairness, deadline, limits.onProgress);
     if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) {
       std::fprintf(stderr, "[symbolic] %zu rules compiled, %.1f s\n", model.rules.size(), std::chrono::duration<double>(Clock::now() - start).count());
     }

@@ -7,9 +7,11 @@
 // whether a fair violation exists, and builds the lasso of one. See specs/ir.md,
 // "Symbolic search".
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 
+#include "semo/checker/explicit_search.hpp"
 #include "semo/checker/trace.hpp"
 #include "semo/semantics/ir.hpp"
 
@@ -19,6 +21,9 @@ struct SymbolicLimits {
   std::uint64_t maxMemoryBytes = 2ull << 30;  // the decision diagrams' node table may not outgrow it
   double seconds = 120;                       // give up after this long
   bool lasso = true;                          // build the lasso of a violation
+  // Called about once a second: the product states reached (or still candidates for a fair
+  // cycle), the round as the depth, the node table's bytes.
+  std::function<void(const Progress&)> onProgress;
 };
 
 struct SymbolicOutcome {

@@ -9,12 +9,14 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "semo/checker/buchi.hpp"
+#include "semo/checker/explicit_search.hpp"
 #include "semo/checker/fairness.hpp"
 #include "semo/semantics/ir.hpp"
 
@@ -68,8 +70,9 @@ inline std::int64_t evaluate(ir::Op op, std::int64_t a, std::int64_t b) {
 // the variable order, so that a step's relation stays small. The automaton's state comes first.
 class SymbolicProduct {
  public:
-  SymbolicProduct(const ir::Model& model, const Buchi& ba, const Fairness& fairness, Clock::time_point deadline)
-      : model_(model), ba_(ba), fairness_(fairness), deadline_(deadline) {
+  SymbolicProduct(const ir::Model& model, const Buchi& ba, const Fairness& fairness, Clock::time_point deadline,
+                  std::function<void(const Progress&)> onProgress = nullptr)
+      : model_(model), ba_(ba), fairness_(fairness), deadline_(deadline), onProgress_(std::move(onProgress)) {
     int bits = 0;
     auto layOut = [&bits](std::int64_t min, std::int64_t max) {
       Layout l{bits, 0, min, max};
@@ -132,7 +135,8 @@ class SymbolicProduct {
         reach |= automatonStep(bdd_replace(bdd_appex(reach, r.relation, bddop_and, r.currentSet), r.toCurrent));
         check();
       }
-      if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) std::fprintf(stderr, "[symbolic] round %d: %.0f states, %d nodes\n", ++rounds, count(reach), bdd_nodecount(reach));
+      progressOn(reach, static_cast<std::uint32_t>(++rounds));
+      if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) std::fprintf(stderr, "[symbolic] round %d: %.0f states, %d nodes\n", rounds, count(reach), bdd_nodecount(reach));
     }
     return reach;
   }
@@ -170,8 +174,10 @@ class SymbolicProduct {
     // shrinkings, and a group met at the current version is not looked at again.
     std::uint64_t version = 0;
     std::vector<std::uint64_t> metAt(fairness_.groups(), UINT64_MAX);
+    std::uint32_t rounds = 0;
     while (true) {
       const bdd old = z;
+      progressOn(z, ++rounds);
       z &= predecessors(z, allowed, nullptr);
       for (const bdd& set : acceptance) z = until(z, z & set, allowed);
       if (z != old) ++version;
@@ -389,9 +395,25 @@ class SymbolicProduct {
     bdd overflow;    // current states where an outcome leaves a declared range
   };
 
-  void check() const {
+  void check() {
     if (packageError != 0) throw GiveUp(std::string("the decision diagrams: ") + bdd_errstring(packageError));
-    if (Clock::now() > deadline_) throw GiveUp("the time given to the symbolic search ran out");
+    const auto now = Clock::now();
+    if (now > deadline_) throw GiveUp("the time given to the symbolic search ran out");
+    if (onProgress_ && now - lastProgress_ >= std::chrono::seconds(1)) {
+      lastProgress_ = now;
+      Progress p;
+      p.states = static_cast<std::uint64_t>(std::min(progressStates_, 1.8e19));
+      p.depth = progressRound_;
+      p.bytes = static_cast<std::uint64_t>(bdd_getnodenum()) * 20;
+      p.seconds = std::chrono::duration<double>(now - started_).count();
+      onProgress_(p);
+    }
+  }
+  // What the progress reports say: the states of the set being computed, and its round.
+  void progressOn(const bdd& states, std::uint32_t round) {
+    if (!onProgress_) return;
+    progressStates_ = count(states);
+    progressRound_ = round;
   }
 
   static int bit(const Layout& l, int i, bool next) { return 2 * (l.first + i) + (next ? 1 : 0); }
@@ -540,6 +562,11 @@ class SymbolicProduct {
   const Buchi& ba_;
   const Fairness& fairness_;
   const Clock::time_point deadline_;
+  const std::function<void(const Progress&)> onProgress_;
+  const Clock::time_point started_ = Clock::now();
+  Clock::time_point lastProgress_ = Clock::now();
+  double progressStates_ = 0;
+  std::uint32_t progressRound_ = 0;
   Layout automaton_;
   std::vector<Layout> layouts_;
   std::vector<Rule> rules_;
