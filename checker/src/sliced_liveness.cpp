@@ -540,12 +540,6 @@ SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const
       SymbolicOutcome result = affordable ? decideSymbolically(slice.model, 0, symbolicLimits) : SymbolicOutcome{};
       if (symbolic && !affordable) result.why = "its time (" + std::to_string(static_cast<int>(kSymbolicSeconds)) + " s for a property) was spent";
       symbolicSeconds += result.seconds;
-      if (std::getenv("SEMO_DEBUG_SLICING") != nullptr) {
-        std::fprintf(stderr, "[slice]   symbolic: %s, %.0f reachable product states, %u worlds, %.1f s %s\n",
-                     result.kind == SymbolicOutcome::Kind::NoViolation ? "no fair violation"
-                     : result.kind == SymbolicOutcome::Kind::Violation ? "a fair violation" : "gave up",
-                     result.reachable, result.worlds, result.seconds, result.why.c_str());
-      }
       out.symbolicStates += result.reachable;
       if (result.kind == SymbolicOutcome::Kind::NoViolation) {
         out.property.verdict = Verdict::Proven;

@@ -253,6 +253,12 @@ SymbolicOutcome decideSymbolically(const ir::Model& model, std::size_t property,
   bdd_done();
   packageError = 0;
   out.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  if (std::getenv("SEMO_DEBUG_SLICING") != nullptr || std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) {
+    std::fprintf(stderr, "[slice]   symbolic: %s, %.0f reachable product states, %u worlds, %.1f s %s\n",
+                 out.kind == SymbolicOutcome::Kind::NoViolation ? "no fair violation"
+                 : out.kind == SymbolicOutcome::Kind::Violation ? "a fair violation" : "gave up",
+                 out.reachable, out.worlds, out.seconds, out.why.c_str());
+  }
   return out;
 }
 
