@@ -144,6 +144,7 @@ Outcome decide(const CompiledModel& cm, std::size_t k, const SearchLimits& limit
   LivenessMethod method{true, sliced.keptVariables, sliced.refinements, sliced.states, {}};
   method.symbolic = sliced.symbolic;
   method.symbolicStates = sliced.symbolicStates;
+  method.hunted = sliced.hunted;
   Outcome out{sliced.property, sliced.states, sliced.transitions, true, {}, sliced.reduced, {}, method};
   if (sliced.property.verdict == Verdict::Proven) return out;
   if (sliced.property.verdict == Verdict::Violated) {

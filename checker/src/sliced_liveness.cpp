@@ -37,8 +37,10 @@ constexpr std::size_t kFairnessRepairs = 32;
 constexpr std::size_t kEntrySearch = 200000;  // states a search for a way into the loop may visit
 constexpr std::uint64_t kRegionStates = 200'000;  // product states a search of the loop's region may take
 
-// The symbolic searches of one property's slices, all together, may take this long.
+// The symbolic searches of one property, all together, may take this long; the last kHuntSeconds
+// of it are kept for the hunt on the property's cone, when no slice decided.
 constexpr double kSymbolicSeconds = 60;
+constexpr double kHuntSeconds = 20;
 
 using State = std::vector<Value>;
 
@@ -486,8 +488,10 @@ class Concretizer {
 
 }  // namespace
 
-SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const SearchLimits& limits, std::uint64_t sliceStates,
-                          bool symbolic) {
+namespace {
+
+SlicedOutcome refineSlices(const CompiledModel& full, std::size_t property, const SearchLimits& limits, std::uint64_t sliceStates,
+                           bool symbolic) {
   const ir::Model& model = full.model();
   const ir::Property& prop = model.properties.at(property);
   SlicedOutcome out;
@@ -534,12 +538,15 @@ SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const
       if (sliceStates < limits.maxStates && limit.rfind("--max-states", 0) == 0) limit = "--slice-states " + std::to_string(sliceStates) + " reached";
       SymbolicLimits symbolicLimits;
       symbolicLimits.maxMemoryBytes = limits.maxMemoryBytes;
-      symbolicLimits.seconds = kSymbolicSeconds - symbolicSeconds;
+      symbolicLimits.seconds = kSymbolicSeconds - kHuntSeconds - symbolicSeconds;
       symbolicLimits.onProgress = limits.onProgress;
       const bool affordable = symbolic && symbolicLimits.seconds > 1;
       SymbolicOutcome result = affordable ? decideSymbolically(slice.model, 0, symbolicLimits) : SymbolicOutcome{};
-      if (symbolic && !affordable) result.why = "its time (" + std::to_string(static_cast<int>(kSymbolicSeconds)) + " s for a property) was spent";
+      if (symbolic && !affordable) {
+        result.why = "its time (" + std::to_string(static_cast<int>(kSymbolicSeconds - kHuntSeconds)) + " s for a property's slices) was spent";
+      }
       symbolicSeconds += result.seconds;
+      out.symbolicSeconds = symbolicSeconds;
       out.symbolicStates += result.reachable;
       if (result.kind == SymbolicOutcome::Kind::NoViolation) {
         out.property.verdict = Verdict::Proven;
@@ -593,6 +600,51 @@ SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const
     for (ir::VarId v : slice.variables) keep[v] = 1;
   }
   out.why = "no slice decided within " + std::to_string(kMaxRefinements) + " refinements";
+  return out;
+}
+
+// Slices over-approximate, so their lassos may keep failing on the model while a real violation
+// hides among them. The hunt looks at the property's whole cone instead (exact), without the
+// crashes and environment steps no fairness asks for, and for a loop that senses nothing (settled
+// on any world): every fair lasso found there is one of the model's, rebuilt on it as a slice's.
+void huntQuietly(const CompiledModel& full, std::size_t property, const SearchLimits& limits, SlicedOutcome& out) {
+  const ir::Model& model = full.model();
+  const ir::Property& prop = model.properties.at(property);
+  Slice cone = sliceModel(model, property, coneOfInfluence(model, property));
+  if (cone.tooCoarse) return;
+  withoutUnfairEnvironment(cone);
+  SymbolicLimits hunt;
+  hunt.maxMemoryBytes = limits.maxMemoryBytes;
+  hunt.seconds = kSymbolicSeconds - out.symbolicSeconds;
+  hunt.onProgress = limits.onProgress;
+  hunt.quietLoop = true;
+  const SymbolicOutcome r = decideSymbolically(cone.model, 0, hunt);
+  out.symbolicSeconds += r.seconds;
+  std::string found;
+  if (r.kind == SymbolicOutcome::Kind::Violation && r.lasso) {
+    Concretizer concretizer(full, cone, *r.lasso, prop.settled);
+    Trace concrete;
+    if (concretizer.run(concrete, prop)) {
+      out.property.verdict = Verdict::Violated;
+      out.property.counterexample = std::move(concrete);
+      out.hunted = true;
+      out.keptVariables = cone.variables.size();
+      out.symbolicStates += r.reachable;
+      return;
+    }
+    found = "its lasso could not be rebuilt (" + concretizer.why() + ")";
+  } else {
+    found = r.kind == SymbolicOutcome::Kind::NoViolation ? "no fair loop that senses nothing" : "gave up (" + r.why + ")";
+  }
+  out.why += "; a hunt on the property's cone of " + std::to_string(cone.variables.size()) + " variables without crashes: " + found;
+}
+
+}  // namespace
+
+SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const SearchLimits& limits, std::uint64_t sliceStates,
+                          bool symbolic) {
+  SlicedOutcome out = refineSlices(full, property, limits, sliceStates, symbolic);
+  if (symbolic && out.property.verdict == Verdict::Unknown) huntQuietly(full, property, limits, out);
   return out;
 }
 

@@ -21,6 +21,10 @@ struct SlicedOutcome {
   // proves it, these say so.
   bool symbolic = false;
   double symbolicStates = 0;      // the slice's reachable product states, counted
+  // The violation was found by the hunt on the property's cone (sliced_liveness.cpp), after no
+  // slice decided; keptVariables is then the cone's.
+  bool hunted = false;
+  double symbolicSeconds = 0;     // spent in symbolic searches (slices and hunt)
 };
 
 // Each slice's product is searched within `sliceStates` states (and limits.maxStates): a slice

@@ -313,4 +313,56 @@ Slice sliceModel(const ir::Model& model, std::size_t property, std::vector<char>
   return out;
 }
 
+std::vector<char> coneOfInfluence(const ir::Model& model, std::size_t property) {
+  std::vector<char> cone(model.variables.size(), 0);
+  markVariablesRead(model.properties.at(property).formula, cone);
+  // Round after round over the rules until none adds a variable: a few rounds on a mission, each
+  // linear in the model's size.
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (const ir::Rule& r : model.rules) {
+      bool assigns = false;
+      for (const ir::Branch& b : r.branches) {
+        for (const ir::Assignment& a : b.assignments) assigns = assigns || cone[a.var] != 0;
+      }
+      if (!assigns) continue;
+      std::vector<char> reads(model.variables.size(), 0);
+      markVariablesRead(r.guard, reads);
+      for (const ir::Branch& b : r.branches) {
+        for (const ir::Assignment& a : b.assignments) {
+          if (cone[a.var] != 0) markVariablesRead(a.value, reads);
+        }
+      }
+      for (std::size_t v = 0; v < reads.size(); ++v) {
+        if (reads[v] != 0 && cone[v] == 0) cone[v] = 1, grew = true;
+      }
+    }
+  }
+  return cone;
+}
+
+std::size_t withoutUnfairEnvironment(Slice& slice) {
+  std::size_t removed = 0, kept = 0;
+  for (std::size_t j = 0; j < slice.model.rules.size(); ++j) {
+    const ir::Rule& r = slice.model.rules[j];
+    const bool environment = r.kind == ir::RuleKind::Crash || r.kind == ir::RuleKind::Environment;
+    if (environment && !r.weaklyFair && !r.stronglyFair && r.fairGroup.empty()) {
+      ++removed;
+      continue;
+    }
+    if (kept != j) {
+      slice.model.rules[kept] = std::move(slice.model.rules[j]);
+      slice.rules[kept] = slice.rules[j];
+      slice.exactGuard[kept] = slice.exactGuard[j];
+      slice.exactUpdates[kept] = slice.exactUpdates[j];
+    }
+    ++kept;
+  }
+  slice.model.rules.resize(kept);
+  slice.rules.resize(kept);
+  slice.exactGuard.resize(kept);
+  slice.exactUpdates.resize(kept);
+  return removed;
+}
+
 }  // namespace semo::checker

@@ -34,6 +34,16 @@ class SettledSearch {
     std::vector<std::int8_t> world(settled ? sensing_.points : 0, -1);
     return search(reach, world);
   }
+  // Whether a fair violation has a loop that senses nothing (settled whatever the world does):
+  // one search, no splitting; a hunt's question, not a proof's.
+  bool violatedQuietly(const bdd& reach) {
+    std::vector<char> allowed(rules_, 0);
+    for (std::uint32_t r = 0; r < rules_; ++r) allowed[r] = sensing_.of[r].empty() ? 1 : 0;
+    ++worlds_;
+    found_ = product_.fairStates(reach, allowed);
+    foundAllowed_ = std::move(allowed);
+    return found_ != bddfalse;
+  }
   [[nodiscard]] std::uint32_t worlds() const { return worlds_; }
   // After a violation: the fair states of the world it was found in, and the rules its loop may use.
   [[nodiscard]] const bdd& fairStates() const { return found_; }
@@ -80,10 +90,14 @@ class SettledSearch {
 };
 
 // A lasso through the fair states a search found, as the explicit engine prints one: the shortest
-// way in, then (inside a bottom component of the fair states, where every way stays fair) a loop
-// that meets each obligation in turn: each acceptance set, each weakly fair group disabled or
-// taken, each strongly fair rule enabled there taken. Each step is taken concretely, the decision
-// diagrams only saying which states lead on.
+// way in, then a loop that meets each obligation in turn (each acceptance set, each weakly fair
+// group disabled or taken, each strongly fair rule enabled on the loop taken) and returns to where
+// it began. Every fair state reaches each obligation inside the fair states (the fixpoint's
+// definition), so the only way to fail is not to get back; the loop then starts again where the
+// walk ended, inside what that state reaches. Those sets shrink at each new start, down to at
+// worst a bottom component, where every state reaches every other, so the search ends; it rarely
+// needs more than a start or two, where narrowing to a bottom component first costs a closure per
+// step. Each step is taken concretely, the decision diagrams only saying which states lead on.
 class SymbolicLasso {
  public:
   using Concrete = SymbolicProduct::Concrete;
@@ -96,43 +110,72 @@ class SymbolicLasso {
     current_ = p_.initialState(p_.until(reach, fair, all_));
     initial_ = current_.values;
     walkTo(fair, reach, all_);
-    // Into a bottom component: one from which nothing else of the fair states is reached. The
-    // bottom components reached from a state that is not in one are among the states it reaches
-    // but that do not reach it back (a set no step leaves): the search narrows to them.
-    bdd region = p_.forwardClosure(p_.cubeOf(current_), fair, loopRules);
-    bdd here = p_.cubeOf(current_);
-    bdd component;
+    bdd region = fair;
     while (true) {
-      component = p_.forwardClosure(here, region, loopRules);
-      const bdd beyond = component & !p_.until(region, here, loopRules);
-      if (beyond == bddfalse) break;
-      region = beyond;
-      here = p_.cubeOf(p_.pick(beyond));
+      const std::size_t loopStart = moves_.size();
+      const Concrete anchor = current_;
+      if (meetObligations(region, loopRules, loopStart, anchor)) return trace(loopStart);
+      // Not back: what this state reaches is a smaller region that still holds a fair loop.
+      region &= p_.forwardClosure(p_.cubeOf(current_), region, loopRules);
     }
-    walkTo(component, fair, loopRules);
-    const std::size_t loopStart = moves_.size();
-    const Concrete entry = current_;
-    for (std::size_t i = 0; i < p_.acceptanceSets(); ++i) walkTo(component & p_.acceptanceSet(i), component, loopRules);
-    const Fairness& f = p_.fairness();
-    for (std::uint32_t g = 0; g < f.groups(); ++g) {
-      const bdd enabled = component & p_.groupEnabled(g);
-      if (enabled == bddfalse) continue;
-      if (f.strong[g] == 0 && (component & !p_.groupEnabled(g)) != bddfalse) {
-        walkTo(component & !p_.groupEnabled(g), component, loopRules);
-        continue;
-      }
-      // Taken: to a state that takes the group's step inside the component, then that step.
-      walkTo(component & p_.predecessors(component, loopRules, &f.members[g]), component, loopRules);
-      std::vector<char> only(p_.rules(), 0);
-      for (std::uint32_t r : f.members[g]) only[r] = loopRules[r];
-      take(component, only);
-    }
-    if (moves_.size() == loopStart) take(component, loopRules);  // a loop has at least one step
-    walkTo(p_.cubeOf(entry), component, loopRules);
-    return trace(loopStart);
   }
 
  private:
+  // Walks a loop from `anchor` (where the walk is) through every obligation and back; false when
+  // the walk ends where `anchor` is out of reach (the steps taken stay, as part of the way in).
+  bool meetObligations(const bdd& region, const std::vector<char>& allowed, std::size_t loopStart, const Concrete& anchor) {
+    for (std::size_t i = 0; i < p_.acceptanceSets(); ++i) walkTo(region & p_.acceptanceSet(i), region, allowed);
+    const Fairness& f = p_.fairness();
+    for (std::uint32_t g = 0; g < f.groups(); ++g) {
+      if (f.strong[g] != 0 || !p_.contains(p_.groupEnabled(g), current_)) continue;
+      // To the nearest state that has the group disabled or takes its step; then that step.
+      walkTo(region & (bdd_not(p_.groupEnabled(g)) | takesGroup(g, region, allowed)), region, allowed);
+      if (p_.contains(p_.groupEnabled(g), current_)) takeGroup(g, region, allowed);
+    }
+    if (moves_.size() == loopStart) take(region, allowed);  // a loop has at least one step
+    // Strongly fair groups: each one enabled somewhere on the loop is taken on it. Taking one may
+    // pass states that enable another; each is taken once at most.
+    std::vector<char> taken(f.groups(), 0);
+    for (bool again = true; again;) {
+      again = false;
+      for (std::uint32_t g = 0; g < f.groups(); ++g) {
+        if (f.strong[g] == 0 || taken[g] != 0) continue;
+        bool enabled = false, took = false;
+        for (std::size_t k = loopStart; k < moves_.size(); ++k) {
+          enabled = enabled || p_.contains(p_.groupEnabled(g), k == loopStart ? anchor : moves_[k - 1].after);
+          took = took || std::find(f.members[g].begin(), f.members[g].end(), moves_[k].rule) != f.members[g].end();
+        }
+        enabled = enabled || p_.contains(p_.groupEnabled(g), current_);
+        if (took) taken[g] = 1;
+        if (!enabled || took) continue;
+        // A loop state reaches a step of the group (the fixpoint); one that cannot is not back.
+        const bdd takes = takesGroup(g, region, allowed);
+        if (!p_.contains(p_.until(region, takes, allowed), current_)) return false;
+        walkTo(takes, region, allowed);
+        takeGroup(g, region, allowed);
+        taken[g] = 1;
+        again = true;
+      }
+    }
+    const bdd home = p_.cubeOf(anchor);
+    if (!p_.contains(p_.until(region, home, allowed), current_)) return false;
+    walkTo(home, region, allowed);
+    return true;
+  }
+
+  // The states of `region` that take one of the group's steps inside it.
+  bdd takesGroup(std::uint32_t g, const bdd& region, const std::vector<char>& allowed) {
+    return region & p_.predecessors(region, allowed, &p_.fairness().members[g]);
+  }
+
+  // One of the group's steps inside `region` (the walk is where one is taken).
+  void takeGroup(std::uint32_t g, const bdd& region, const std::vector<char>& allowed) {
+    const Fairness& f = p_.fairness();
+    std::vector<char> only(p_.rules(), 0);
+    for (std::uint32_t r : f.members[g]) only[r] = allowed[r];
+    take(region, only);
+  }
+
   // Along a shortest path inside `within` to a state of `goal` (which it reaches).
   void walkTo(const bdd& goal, const bdd& within, const std::vector<char>& allowed) {
     std::vector<bdd> rings{goal & within};
@@ -232,7 +275,7 @@ SymbolicOutcome decideSymbolically(const ir::Model& model, std::size_t property,
     }
     if (product.overflowsFrom(reach)) throw GiveUp("an update leaves a variable's declared range");
     SettledSearch search(product, sensing, model.rules.size());
-    const bool violated = search.violated(reach, prop.settled);
+    const bool violated = limits.quietLoop ? search.violatedQuietly(reach) : search.violated(reach, prop.settled);
     out.worlds = search.worlds();
     if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) {
       std::fprintf(stderr, "[symbolic] fair states searched in %u worlds: %s, %.1f s\n", out.worlds, violated ? "some" : "none",

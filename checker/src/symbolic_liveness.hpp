@@ -21,6 +21,9 @@ struct SymbolicLimits {
   std::uint64_t maxMemoryBytes = 2ull << 30;  // the decision diagrams' node table may not outgrow it
   double seconds = 120;                       // give up after this long
   bool lasso = true;                          // build the lasso of a violation
+  // Look only for loops that take no sensing step (a hunt for violations: a loop that senses
+  // nothing is settled on any world; "no violation" then proves nothing).
+  bool quietLoop = false;
   // Called about once a second: the product states reached (or still candidates for a fair
   // cycle), the round as the depth, the node table's bytes.
   std::function<void(const Progress&)> onProgress;

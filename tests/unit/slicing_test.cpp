@@ -56,6 +56,31 @@ TEST(Slicing, GuardsWeakenAndTheirFairnessGoesNewValuesBecomeChoices) {
   EXPECT_EQ(s.fairnessDropped, 1u);
 }
 
+// The cone of influence keeps exactly what the property depends on, transitively; the hunt then
+// drops the crash and environment steps no fairness asks for, the slice's maps kept in step.
+TEST(Slicing, TheConeKeepsWhatThePropertyDependsOnAndTheHuntDropsUnfairCrashes) {
+  const ir::Model m = test::parseIr(
+      "semo-ir 1;\nvar w : 0..2 = 0;\nvar x : 0..2 = 0;\nvar y : 0..2 = 0;\nvar z : bool = false;\n"
+      "rule watch @fair : x == 1 -> w' = 2;\n"          // reads x, but nothing in the cone reads w
+      "rule crash @kind(crash) : true -> z' = true;\n"  // the cone reads z: kept by the slice
+      "rule set @fair : y == 1 -> x' = 1;\n"            // x depends on y
+      "rule pick @fair : true -> y' = z ? 1 : 2;\n"     // y depends on z
+      "property p : always eventually {x == 1};\n");
+  const std::vector<char> cone = coneOfInfluence(m, 0);
+  EXPECT_EQ(cone, (std::vector<char>{0, 1, 1, 1}));
+  Slice s = sliceModel(m, 0, cone);
+  ASSERT_EQ(s.model.rules.size(), 3u);
+  EXPECT_EQ(s.leftOut, 1u);
+  for (char exact : s.exactGuard) EXPECT_TRUE(exact);
+  for (char exact : s.exactUpdates) EXPECT_TRUE(exact);
+  EXPECT_EQ(withoutUnfairEnvironment(s), 1u);
+  ASSERT_EQ(s.model.rules.size(), 2u);
+  EXPECT_EQ(s.model.rules[0].name, "set");
+  EXPECT_EQ(s.model.rules[1].name, "pick");
+  EXPECT_EQ(s.rules, (std::vector<std::uint32_t>{2, 3}));
+  EXPECT_EQ(s.exactGuard.size(), 2u);
+}
+
 TEST(Slicing, AGroupKeepsItsFairnessOnlyWhenTheSliceSeesEveryRuleOfIt) {
   ir::Model m = test::parseIr(
       "semo-ir 1;\nvar pc : 0..1 = 0;\nvar x : bool = false;\nvar y : bool = false;\n"

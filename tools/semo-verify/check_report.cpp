@@ -150,6 +150,10 @@ nlohmann::json reportJson(const checker::Report& r, const ir::Model& model, cons
           search["on"] = "slice, symbolically";
           search["symbolicProductStates"] = m.symbolicStates;
         }
+        if (m.hunted) {
+          search["on"] = "cone without crashes, symbolically";
+          search["symbolicProductStates"] = m.symbolicStates;
+        }
         if (!m.slicingGaveUp.empty()) search["slicingGaveUp"] = m.slicingGaveUp;
         jp["search"] = search;
       }

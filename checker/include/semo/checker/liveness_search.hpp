@@ -33,6 +33,9 @@ struct LivenessMethod {
   // (symbolic_liveness.hpp); symbolicStates counts the reachable product states of the slices so searched.
   bool symbolic = false;
   double symbolicStates = 0;
+  // Violated: the lasso was found by the hunt on the property's cone, without crashes, for a loop
+  // that senses nothing (symbolically), after no slice decided; keptVariables is the cone's.
+  bool hunted = false;
   double seconds = 0;             // spent on this property
 };
 

@@ -42,4 +42,15 @@ bool usesNext(const ir::Ltl& f);
 // variables marked in `keep` (one entry per model variable; the property's own are added).
 Slice sliceModel(const ir::Model& model, std::size_t property, std::vector<char> keep);
 
+// The variables the property depends on: those it reads and, transitively, those read by the
+// guard and the new values of every rule that assigns one of them. A slice keeping them all is
+// exact: it drops only rules whose steps it cannot see, and weakens no guard or update.
+std::vector<char> coneOfInfluence(const ir::Model& model, std::size_t property);
+
+// Removes from a slice the crash and environment steps that no fairness asks for (a robot that
+// crashes, a fact the world offers); returns how many. Every fair run of what is left is a fair
+// run of the slice (the same fairness, fewer steps): a lasso found on it is one of the slice's,
+// an under-approximation for hunting violations, never for proofs.
+std::size_t withoutUnfairEnvironment(Slice& slice);
+
 }  // namespace semo::checker
