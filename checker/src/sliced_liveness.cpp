@@ -147,11 +147,13 @@ SlicedOutcome refineSlices(const CompiledModel& full, std::size_t property, cons
   return out;
 }
 
+}  // namespace
+
 // Slices over-approximate, so their lassos may keep failing on the model while a real violation
 // hides among them. The hunt looks at the property's whole cone instead (exact), without the
 // crashes and environment steps no fairness asks for, and for a loop that senses nothing (settled
 // on any world): every fair lasso found there is one of the model's, rebuilt on it as a slice's.
-void huntQuietly(const CompiledModel& full, std::size_t property, const SearchLimits& limits, SlicedOutcome& out) {
+void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLimits& limits, SlicedOutcome& out) {
   const ir::Model& model = full.model();
   const ir::Property& prop = model.properties.at(property);
   Slice cone = sliceModel(model, property, coneOfInfluence(model, property));
@@ -183,12 +185,10 @@ void huntQuietly(const CompiledModel& full, std::size_t property, const SearchLi
   out.why += "; a hunt on the property's cone of " + std::to_string(cone.variables.size()) + " variables without crashes: " + found;
 }
 
-}  // namespace
-
 SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const SearchLimits& limits, std::uint64_t sliceStates,
                           bool symbolic) {
   SlicedOutcome out = refineSlices(full, property, limits, sliceStates, symbolic);
-  if (symbolic && out.property.verdict == Verdict::Unknown) huntQuietly(full, property, limits, out);
+  if (symbolic && out.property.verdict == Verdict::Unknown) huntOnCone(full, property, limits, out);
   return out;
 }
 

@@ -30,6 +30,11 @@ struct SlicedOutcome {
 // Each slice's product is searched within `sliceStates` states (and limits.maxStates): a slice
 // that grows past it leaves the property to the whole product, if the caller searches it.
 // With `symbolic`, a slice too large to enumerate is searched symbolically (symbolic_liveness.hpp).
+// The hunt on the property's cone, as checkSliced runs it when no slice decided: a violation found
+// there and rebuilt on the whole model becomes `out`'s verdict (hunted); otherwise out.why says how
+// the hunt ended. Never a proof.
+void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLimits& limits, SlicedOutcome& out);
+
 SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const SearchLimits& limits, std::uint64_t sliceStates,
                           bool symbolic);
 
