@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -133,34 +134,40 @@ class SymbolicLasso {
       if (p_.contains(p_.groupEnabled(g), current_)) takeGroup(g, region, allowed);
     }
     if (moves_.size() == loopStart) take(region, allowed);  // a loop has at least one step
-    // Strongly fair groups: each one enabled somewhere on the loop is taken on it. Taking one may
-    // pass states that enable another; each is taken once at most.
-    std::vector<char> taken(f.groups(), 0);
-    for (bool again = true; again;) {
-      again = false;
-      for (std::uint32_t g = 0; g < f.groups(); ++g) {
-        if (f.strong[g] == 0 || taken[g] != 0) continue;
-        bool enabled = false, took = false;
-        for (std::size_t k = loopStart; k < moves_.size(); ++k) {
-          enabled = enabled || p_.contains(p_.groupEnabled(g), k == loopStart ? anchor : moves_[k - 1].after);
-          took = took || std::find(f.members[g].begin(), f.members[g].end(), moves_[k].rule) != f.members[g].end();
-        }
-        enabled = enabled || p_.contains(p_.groupEnabled(g), current_);
-        if (took) taken[g] = 1;
-        if (!enabled || took) continue;
-        // A loop state reaches a step of the group (the fixpoint); one that cannot is not back.
-        const bdd takes = takesGroup(g, region, allowed);
-        if (!p_.contains(p_.until(region, takes, allowed), current_)) return false;
-        walkTo(takes, region, allowed);
-        takeGroup(g, region, allowed);
-        taken[g] = 1;
-        again = true;
-      }
-    }
+    // Strongly fair groups: each one enabled somewhere on the loop is taken on it. Taking one, or
+    // the way home, may pass states that enable another: the loop is looked at again until none
+    // is missing (each group is taken once at most, so this ends).
     const bdd home = p_.cubeOf(anchor);
-    if (!p_.contains(p_.until(region, home, allowed), current_)) return false;
-    walkTo(home, region, allowed);
-    return true;
+    while (true) {
+      const std::optional<std::uint32_t> g = missingStrongGroup(loopStart, anchor);
+      if (!g) {
+        if (p_.contains(home, current_)) return true;
+        if (!p_.contains(p_.until(region, home, allowed), current_)) return false;
+        walkTo(home, region, allowed);
+        continue;
+      }
+      // A loop state reaches a step of the group (the fixpoint); one that cannot is not back.
+      const bdd takes = takesGroup(*g, region, allowed);
+      if (!p_.contains(p_.until(region, takes, allowed), current_)) return false;
+      walkTo(takes, region, allowed);
+      takeGroup(*g, region, allowed);
+    }
+  }
+
+  // A strongly fair group enabled in a state of the loop walked so far (from `anchor`, the
+  // current state included) and not taken on it.
+  std::optional<std::uint32_t> missingStrongGroup(std::size_t loopStart, const Concrete& anchor) const {
+    const Fairness& f = p_.fairness();
+    for (std::uint32_t g = 0; g < f.groups(); ++g) {
+      if (f.strong[g] == 0) continue;
+      bool enabled = p_.contains(p_.groupEnabled(g), current_), took = false;
+      for (std::size_t k = loopStart; k < moves_.size() && !took; ++k) {
+        enabled = enabled || p_.contains(p_.groupEnabled(g), k == loopStart ? anchor : moves_[k - 1].after);
+        took = std::find(f.members[g].begin(), f.members[g].end(), moves_[k].rule) != f.members[g].end();
+      }
+      if (enabled && !took) return g;
+    }
+    return std::nullopt;
   }
 
   // The states of `region` that take one of the group's steps inside it.
