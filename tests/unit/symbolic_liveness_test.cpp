@@ -23,9 +23,11 @@ LivenessResult explicitSearch(const ir::Model& m) {
   return checkLiveness(m, SearchLimits{}, options);
 }
 
-TEST(SymbolicLiveness, RandomModelsGetTheExplicitVerdictsAndCheckedLassos) {
-  int proven = 0, violated = 0;
-  for (std::uint32_t seed = 1; seed <= 300; ++seed) {
+// Calls f(model, the explicit search's result, property index) for every property of the random
+// models 1..seeds, traced with the seed, the model's text and the property's name.
+template <typename F>
+void forEachRandomProperty(std::uint32_t seeds, F f) {
+  for (std::uint32_t seed = 1; seed <= seeds; ++seed) {
     const std::string text = test::RandomModel(seed).text();
     SCOPED_TRACE("seed " + std::to_string(seed) + ":\n" + text);
     const ir::Model m = test::parseIr(text);
@@ -33,20 +35,27 @@ TEST(SymbolicLiveness, RandomModelsGetTheExplicitVerdictsAndCheckedLassos) {
     ASSERT_TRUE(reference.complete);
     for (std::size_t k = 0; k < m.properties.size(); ++k) {
       SCOPED_TRACE(m.properties[k].name);
-      const SymbolicOutcome s = detail::decideSymbolically(m, k, {});
-      ASSERT_NE(s.kind, SymbolicOutcome::Kind::GaveUp) << s.why;
-      const Verdict expected = reference.properties[k].verdict;
-      EXPECT_EQ(s.kind == SymbolicOutcome::Kind::Violation ? Verdict::Violated : Verdict::Proven, expected);
-      if (s.kind != SymbolicOutcome::Kind::Violation) {
-        ++proven;
-        continue;
-      }
-      ++violated;
-      ASSERT_TRUE(s.lasso.has_value());
-      const LassoCheck c = checkLasso(m, *s.lasso, m.properties[k]);
-      EXPECT_TRUE(c.counterexample()) << c.why << " unfair " << c.unfairGroups.size() << " unsettled " << c.unsettled.size();
+      f(m, reference, k);
     }
   }
+}
+
+TEST(SymbolicLiveness, RandomModelsGetTheExplicitVerdictsAndCheckedLassos) {
+  int proven = 0, violated = 0;
+  forEachRandomProperty(300, [&](const ir::Model& m, const LivenessResult& reference, std::size_t k) {
+    const SymbolicOutcome s = detail::decideSymbolically(m, k, {});
+    ASSERT_NE(s.kind, SymbolicOutcome::Kind::GaveUp) << s.why;
+    const Verdict expected = reference.properties[k].verdict;
+    EXPECT_EQ(s.kind == SymbolicOutcome::Kind::Violation ? Verdict::Violated : Verdict::Proven, expected);
+    if (s.kind != SymbolicOutcome::Kind::Violation) {
+      ++proven;
+      return;
+    }
+    ++violated;
+    ASSERT_TRUE(s.lasso.has_value());
+    const LassoCheck c = checkLasso(m, *s.lasso, m.properties[k]);
+    EXPECT_TRUE(c.counterexample()) << c.why << " unfair " << c.unfairGroups.size() << " unsettled " << c.unsettled.size();
+  });
   EXPECT_GT(proven, 100);
   EXPECT_GT(violated, 100);
 }
@@ -122,28 +131,21 @@ TEST(SymbolicLiveness, ASliceFarBeyondTheBudgetIsDecidedSymbolically) {
 // explicit search proves the property it finds nothing.
 TEST(SymbolicLiveness, AHuntForQuietLoopsFindsOnlyRealViolations) {
   int found = 0, violations = 0;
-  for (std::uint32_t seed = 1; seed <= 300; ++seed) {
-    const std::string text = test::RandomModel(seed).text();
-    SCOPED_TRACE("seed " + std::to_string(seed) + ":\n" + text);
-    const ir::Model m = test::parseIr(text);
-    const LivenessResult reference = explicitSearch(m);
-    for (std::size_t k = 0; k < m.properties.size(); ++k) {
-      SCOPED_TRACE(m.properties[k].name);
-      detail::SymbolicLimits quiet;
-      quiet.quietLoop = true;
-      const SymbolicOutcome s = detail::decideSymbolically(m, k, quiet);
-      ASSERT_NE(s.kind, SymbolicOutcome::Kind::GaveUp) << s.why;
-      if (reference.properties[k].verdict == Verdict::Violated) ++violations;
-      if (s.kind != SymbolicOutcome::Kind::Violation) continue;
-      ++found;
-      EXPECT_EQ(reference.properties[k].verdict, Verdict::Violated);
-      ASSERT_TRUE(s.lasso.has_value());
-      EXPECT_TRUE(checkLasso(m, *s.lasso, m.properties[k]).counterexample());
-      for (std::size_t i = s.lasso->loopStart; i < s.lasso->steps.size(); ++i) {
-        EXPECT_TRUE(m.rules[s.lasso->steps[i].rule].sensed.empty()) << "the loop senses at step " << i + 1;
-      }
+  forEachRandomProperty(300, [&](const ir::Model& m, const LivenessResult& reference, std::size_t k) {
+    detail::SymbolicLimits quiet;
+    quiet.quietLoop = true;
+    const SymbolicOutcome s = detail::decideSymbolically(m, k, quiet);
+    ASSERT_NE(s.kind, SymbolicOutcome::Kind::GaveUp) << s.why;
+    if (reference.properties[k].verdict == Verdict::Violated) ++violations;
+    if (s.kind != SymbolicOutcome::Kind::Violation) return;
+    ++found;
+    EXPECT_EQ(reference.properties[k].verdict, Verdict::Violated);
+    ASSERT_TRUE(s.lasso.has_value());
+    EXPECT_TRUE(checkLasso(m, *s.lasso, m.properties[k]).counterexample());
+    for (std::size_t i = s.lasso->loopStart; i < s.lasso->steps.size(); ++i) {
+      EXPECT_TRUE(m.rules[s.lasso->steps[i].rule].sensed.empty()) << "the loop senses at step " << i + 1;
     }
-  }
+  });
   // Most violations of these models have a quiet loop; not all (some need the world's help).
   EXPECT_GT(found, 50);
   EXPECT_LE(found, violations);
@@ -154,28 +156,21 @@ TEST(SymbolicLiveness, AHuntForQuietLoopsFindsOnlyRealViolations) {
 // passes the independent check; what it does not find, it leaves unknown with the reason.
 TEST(SymbolicLiveness, TheHuntOnTheConeReportsOnlyRebuiltViolations) {
   int hunted = 0;
-  for (std::uint32_t seed = 1; seed <= 300; ++seed) {
-    const std::string text = test::RandomModel(seed).text();
-    SCOPED_TRACE("seed " + std::to_string(seed) + ":\n" + text);
-    const ir::Model m = test::parseIr(text);
+  forEachRandomProperty(300, [&](const ir::Model& m, const LivenessResult& reference, std::size_t k) {
     const CompiledModel cm(m);
-    const LivenessResult reference = explicitSearch(m);
-    for (std::size_t k = 0; k < m.properties.size(); ++k) {
-      SCOPED_TRACE(m.properties[k].name);
-      detail::SlicedOutcome out;
-      detail::huntOnCone(cm, k, SearchLimits{}, out);
-      if (out.property.verdict != Verdict::Violated) {
-        EXPECT_EQ(out.property.verdict, Verdict::Unknown);
-        EXPECT_NE(out.why.find("a hunt on the property's cone"), std::string::npos) << out.why;
-        continue;
-      }
-      ++hunted;
-      EXPECT_TRUE(out.hunted);
-      EXPECT_EQ(reference.properties[k].verdict, Verdict::Violated);
-      ASSERT_TRUE(out.property.counterexample.has_value());
-      EXPECT_TRUE(checkLasso(m, *out.property.counterexample, m.properties[k]).counterexample());
+    detail::SlicedOutcome out;
+    detail::huntOnCone(cm, k, SearchLimits{}, out);
+    if (out.property.verdict != Verdict::Violated) {
+      EXPECT_EQ(out.property.verdict, Verdict::Unknown);
+      EXPECT_NE(out.why.find("a hunt on the property's cone"), std::string::npos) << out.why;
+      return;
     }
-  }
+    ++hunted;
+    EXPECT_TRUE(out.hunted);
+    EXPECT_EQ(reference.properties[k].verdict, Verdict::Violated);
+    ASSERT_TRUE(out.property.counterexample.has_value());
+    EXPECT_TRUE(checkLasso(m, *out.property.counterexample, m.properties[k]).counterexample());
+  });
   EXPECT_GT(hunted, 50);
 }
 
