@@ -31,12 +31,22 @@ constexpr std::uint32_t kMaxRefinements = 32;
 
 // The symbolic searches of one property, all together, may take this long; the last kHuntSeconds
 // of it are kept for the hunt on the property's cone, when no slice decided.
-constexpr double kSymbolicSeconds = 60;
+constexpr double kDefaultSymbolicSeconds = 60;
 constexpr double kHuntSeconds = 20;
 
-SlicedOutcome refineSlices(const CompiledModel& full, std::size_t property, const SearchLimits& limits, std::uint64_t sliceStates,
-                           bool symbolic) {
-  const ir::Model& model = full.model();
+// SEMO_SYMBOLIC_SECONDS (a developer's knob, checker/README.md) changes that minute, to see how
+// far more time would take a search.
+double symbolicSecondsPerProperty() {
+  const char* s = std::getenv("SEMO_SYMBOLIC_SECONDS");
+  if (s == nullptr) return kDefaultSymbolicSeconds;
+  const double v = std::atof(s);
+  return v > kHuntSeconds ? v : kDefaultSymbolicSeconds;
+}
+
+SlicedOutcome refineSlices(const CompiledModel& full, const ControlFacts& facts, std::size_t property, const SearchLimits& limits,
+                           std::uint64_t sliceStates, bool symbolic) {
+  // Slices are cut from the model with the control facts applied (slicing.hpp): the same runs.
+  const ir::Model& model = facts.model;
   const ir::Property& prop = model.properties.at(property);
   SlicedOutcome out;
   out.property = {prop.name, prop.origin, Verdict::Unknown, {}};
@@ -49,7 +59,7 @@ SlicedOutcome refineSlices(const CompiledModel& full, std::size_t property, cons
   double symbolicSeconds = 0;
   bool enumerate = true;
   for (std::uint32_t round = 0; round < kMaxRefinements; ++round) {
-    Slice slice = sliceModel(model, property, keep);
+    Slice slice = sliceModel(model, property, keep, facts.neverFires);
     out.keptVariables = slice.variables.size();
     out.refinements = round;
     if (slice.tooCoarse) {
@@ -82,12 +92,12 @@ SlicedOutcome refineSlices(const CompiledModel& full, std::size_t property, cons
       if (sliceStates < limits.maxStates && limit.rfind("--max-states", 0) == 0) limit = "--slice-states " + std::to_string(sliceStates) + " reached";
       SymbolicLimits symbolicLimits;
       symbolicLimits.maxMemoryBytes = limits.maxMemoryBytes;
-      symbolicLimits.seconds = kSymbolicSeconds - kHuntSeconds - symbolicSeconds;
+      symbolicLimits.seconds = symbolicSecondsPerProperty() - kHuntSeconds - symbolicSeconds;
       symbolicLimits.onProgress = limits.onProgress;
       const bool affordable = symbolic && symbolicLimits.seconds > 1;
       SymbolicOutcome result = affordable ? decideSymbolically(slice.model, 0, symbolicLimits) : SymbolicOutcome{};
       if (symbolic && !affordable) {
-        result.why = "its time (" + std::to_string(static_cast<int>(kSymbolicSeconds - kHuntSeconds)) + " s for a property's slices) was spent";
+        result.why = "its time (" + std::to_string(static_cast<int>(symbolicSecondsPerProperty() - kHuntSeconds)) + " s for a property's slices) was spent";
       }
       symbolicSeconds += result.seconds;
       out.symbolicSeconds = symbolicSeconds;
@@ -153,15 +163,25 @@ SlicedOutcome refineSlices(const CompiledModel& full, std::size_t property, cons
 // hides among them. The hunt looks at the property's whole cone instead (exact), without the
 // crashes and environment steps no fairness asks for, and for a loop that senses nothing (settled
 // on any world): every fair lasso found there is one of the model's, rebuilt on it as a slice's.
-void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLimits& limits, SlicedOutcome& out) {
-  const ir::Model& model = full.model();
+void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLimits& limits, SlicedOutcome& out,
+                const ControlFacts* facts) {
+  const ControlFacts none{{}, {}, 0, 0};
+  const ir::Model& model = facts != nullptr ? facts->model : full.model();
+  const std::vector<char>& neverFires = facts != nullptr ? facts->neverFires : none.neverFires;
   const ir::Property& prop = model.properties.at(property);
-  Slice cone = sliceModel(model, property, coneOfInfluence(model, property));
+  Slice cone = sliceModel(model, property, coneOfInfluence(model, property, neverFires), neverFires);
   if (cone.tooCoarse) return;
+  if (std::getenv("SEMO_DEBUG_SLICING") != nullptr) {
+    std::vector<char> in(model.variables.size(), 0);
+    for (ir::VarId v : cone.variables) in[v] = 1;
+    for (ir::VarId v = 0; v < in.size(); ++v) {
+      if (in[v] == 0) std::fprintf(stderr, "[slice] outside the cone: %s\n", model.variables[v].name.c_str());
+    }
+  }
   withoutUnfairEnvironment(cone);
   SymbolicLimits hunt;
   hunt.maxMemoryBytes = limits.maxMemoryBytes;
-  hunt.seconds = kSymbolicSeconds - out.symbolicSeconds;
+  hunt.seconds = symbolicSecondsPerProperty() - out.symbolicSeconds;
   hunt.onProgress = limits.onProgress;
   hunt.quietLoop = true;
   const SymbolicOutcome r = decideSymbolically(cone.model, 0, hunt);
@@ -187,8 +207,17 @@ void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLim
 
 SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const SearchLimits& limits, std::uint64_t sliceStates,
                           bool symbolic) {
-  SlicedOutcome out = refineSlices(full, property, limits, sliceStates, symbolic);
-  if (symbolic && out.property.verdict == Verdict::Unknown) huntOnCone(full, property, limits, out);
+  const ControlFacts facts = controlFacts(full.model());
+  if (std::getenv("SEMO_DEBUG_SLICING") != nullptr) {
+    std::size_t dead = 0;
+    for (std::size_t r = 0; r < facts.neverFires.size(); ++r) {
+      if (facts.neverFires[r] != 0) ++dead, std::fprintf(stderr, "[slice] never fires: %s\n", full.model().rules[r].name.c_str());
+    }
+    std::fprintf(stderr, "[slice] control facts: %zu rules never fire, %zu conjuncts implied, %zu robots skipped\n", dead,
+                 facts.droppedConjuncts, facts.robotsSkipped);
+  }
+  SlicedOutcome out = refineSlices(full, facts, property, limits, sliceStates, symbolic);
+  if (symbolic && out.property.verdict == Verdict::Unknown) huntOnCone(full, property, limits, out, &facts);
   return out;
 }
 

@@ -7,6 +7,7 @@
 
 #include "semo/checker/compiled_model.hpp"
 #include "semo/checker/explicit_search.hpp"
+#include "semo/checker/slicing.hpp"
 
 namespace semo::checker::detail {
 
@@ -33,7 +34,8 @@ struct SlicedOutcome {
 // The hunt on the property's cone, as checkSliced runs it when no slice decided: a violation found
 // there and rebuilt on the whole model becomes `out`'s verdict (hunted); otherwise out.why says how
 // the hunt ended. Never a proof.
-void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLimits& limits, SlicedOutcome& out);
+void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLimits& limits, SlicedOutcome& out,
+                const ControlFacts* facts = nullptr);
 
 SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const SearchLimits& limits, std::uint64_t sliceStates,
                           bool symbolic);

@@ -199,10 +199,9 @@ bool usesNext(const ir::Ltl& f) {
   return std::any_of(f.args.begin(), f.args.end(), [](const ir::Ltl& g) { return usesNext(g); });
 }
 
-Slice sliceModel(const ir::Model& model, std::size_t property, std::vector<char> keep) {
-  const ir::Property& prop = model.properties.at(property);
-  keep.resize(model.variables.size(), 0);
-  markVariablesRead(prop.formula, keep);
+// The slice keeping `keep`, without a property; rules marked in `neverFires` are left out.
+Slice sliceVariables(const ir::Model& model, const std::vector<char>& keep, const std::vector<char>& neverFires) {
+  auto dead = [&](std::uint32_t r) { return r < neverFires.size() && neverFires[r] != 0; };
   Slice out;
   std::vector<std::int32_t> newId(model.variables.size(), -1);
   for (ir::VarId v = 0; v < model.variables.size(); ++v) {
@@ -234,12 +233,16 @@ Slice sliceModel(const ir::Model& model, std::size_t property, std::vector<char>
   std::vector<char> groupKept(fairness.groups(), 1);
   for (std::uint32_t g = 0; g < fairness.groups(); ++g) {
     for (std::uint32_t r : fairness.members[g]) {
-      if (!assignsKept(model.rules[r]) || !abs.exact(model.rules[r].guard)) groupKept[g] = 0;
+      if (!dead(r) && (!assignsKept(model.rules[r]) || !abs.exact(model.rules[r].guard))) groupKept[g] = 0;
     }
   }
 
   for (std::uint32_t r = 0; r < model.rules.size(); ++r) {
     const ir::Rule& rule = model.rules[r];
+    if (dead(r)) {
+      ++out.neverFire;
+      continue;
+    }
     if (!assignsKept(rule)) {
       ++out.leftOut;
       continue;
@@ -309,18 +312,41 @@ Slice sliceModel(const ir::Model& model, std::size_t property, std::vector<char>
   for (ir::VarId v = 0; v < coarse.size(); ++v) {
     if (coarse[v] && !keep[v]) out.coarseReads.push_back(v);
   }
+  return out;
+}
+
+Slice sliceModel(const ir::Model& model, std::size_t property, std::vector<char> keep, const std::vector<char>& neverFires) {
+  const ir::Property& prop = model.properties.at(property);
+  keep.resize(model.variables.size(), 0);
+  markVariablesRead(prop.formula, keep);
+  std::vector<std::int32_t> newId(model.variables.size(), -1);
+  Slice out = sliceVariables(model, keep, neverFires);
+  for (std::size_t k = 0; k < out.variables.size(); ++k) newId[out.variables[k]] = static_cast<std::int32_t>(k);
+  const Abstractor abs(keep, newId);
   out.model.properties.push_back({prop.name, prop.origin, renameLtl(prop.formula, abs), prop.settled});
   return out;
 }
 
-std::vector<char> coneOfInfluence(const ir::Model& model, std::size_t property) {
+ir::Expr seenThrough(const ir::Expr& e, const Slice& slice, std::size_t modelVariables) {
+  std::vector<char> keep(modelVariables, 0);
+  std::vector<std::int32_t> newId(modelVariables, -1);
+  for (std::size_t k = 0; k < slice.variables.size(); ++k) {
+    keep[slice.variables[k]] = 1;
+    newId[slice.variables[k]] = static_cast<std::int32_t>(k);
+  }
+  return Abstractor(keep, newId).upper(e);
+}
+
+std::vector<char> coneOfInfluence(const ir::Model& model, std::size_t property, const std::vector<char>& neverFires) {
   std::vector<char> cone(model.variables.size(), 0);
   markVariablesRead(model.properties.at(property).formula, cone);
   // Round after round over the rules until none adds a variable: a few rounds on a mission, each
   // linear in the model's size.
   for (bool grew = true; grew;) {
     grew = false;
-    for (const ir::Rule& r : model.rules) {
+    for (std::size_t k = 0; k < model.rules.size(); ++k) {
+      if (k < neverFires.size() && neverFires[k] != 0) continue;
+      const ir::Rule& r = model.rules[k];
       bool assigns = false;
       for (const ir::Branch& b : r.branches) {
         for (const ir::Assignment& a : b.assignments) assigns = assigns || cone[a.var] != 0;

@@ -28,6 +28,7 @@ struct Slice {
   std::vector<char> exactGuard;       // per slice rule: its guard reads only kept variables
   std::vector<char> exactUpdates;     // per slice rule: every kept variable's new value reads only kept ones
   std::size_t leftOut = 0;            // model rules that assign no kept variable
+  std::size_t neverFire = 0;          // model rules left out because no reachable state enables them
   std::size_t fairnessDropped = 0;    // fair model rules kept without their fairness
   bool tooCoarse = false;             // an update had too many possible values to enumerate
   std::vector<ir::VarId> coarseReads; // then, the removed variables it read (to keep next time)
@@ -39,13 +40,41 @@ void markVariablesRead(const ir::Ltl& f, std::vector<char>& mark);
 bool usesNext(const ir::Ltl& f);
 
 // The slice of `model` for its property `property` (an index into Model::properties) keeping the
-// variables marked in `keep` (one entry per model variable; the property's own are added).
-Slice sliceModel(const ir::Model& model, std::size_t property, std::vector<char> keep);
+// variables marked in `keep` (one entry per model variable; the property's own are added). Rules
+// marked in `neverFires` (rulesThatNeverFire) are left out, as their groups' members.
+Slice sliceModel(const ir::Model& model, std::size_t property, std::vector<char> keep, const std::vector<char>& neverFires = {});
+
+// The slice keeping the variables marked in `keep`, without a property (for analyses that explore
+// it whole). Rules marked in `neverFires` are left out.
+Slice sliceVariables(const ir::Model& model, const std::vector<char>& keep, const std::vector<char>& neverFires = {});
+
+// `e` seen through a slice's variables: a condition on them (numbered as in the slice) that every
+// state satisfying `e` satisfies, whatever the removed variables hold.
+ir::Expr seenThrough(const ir::Expr& e, const Slice& slice, std::size_t modelVariables);
+
+// What each robot's control variables (its mode, program counters and `alive`) can reach, and
+// what follows for the rules: the slice keeping one robot's control variables is explored whole;
+// its states include every reachable state of the model seen through them. Then
+// - a rule whose guard, seen through them, holds in none of its states never fires (a `default`
+//   transition out of a mode whose plans loop for ever);
+// - a conjunct of a guard that holds in every such state where the rest of the guard may hold
+//   is implied there (`pc.Report == 0` in RC_MODE, where the Report plan does not run) and is
+//   dropped from `model`'s guards.
+// Leaving the dead rules out of slices and cones, and slicing `model`, changes no run and no
+// fairness (a rule never enabled is never owed a step; a guard changes only outside the reachable
+// states), but keeps out of the cone the variables only those rules and conjuncts read.
+struct ControlFacts {
+  std::vector<char> neverFires;   // per model rule
+  ir::Model model;                // the model with the implied conjuncts dropped
+  std::size_t droppedConjuncts = 0;
+  std::size_t robotsSkipped = 0;  // robots whose control variables have too many combinations
+};
+ControlFacts controlFacts(const ir::Model& model, std::uint64_t maxStatesPerRobot = 1u << 22);
 
 // The variables the property depends on: those it reads and, transitively, those read by the
 // guard and the new values of every rule that assigns one of them. A slice keeping them all is
 // exact: it drops only rules whose steps it cannot see, and weakens no guard or update.
-std::vector<char> coneOfInfluence(const ir::Model& model, std::size_t property);
+std::vector<char> coneOfInfluence(const ir::Model& model, std::size_t property, const std::vector<char>& neverFires = {});
 
 // Removes from a slice the crash and environment steps that no fairness asks for (a robot that
 // crashes, a fact the world offers); returns how many. Every fair run of what is left is a fair
