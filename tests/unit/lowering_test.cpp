@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 
 #include "semo/semantics/load.hpp"
 #include "semo/semantics/translate.hpp"
@@ -96,32 +97,47 @@ INSTANTIATE_TEST_SUITE_P(
                     std::pair{"specs/examples/patrol/patrol.semo", "specs/examples/patrol/strategy.xml"},
                     std::pair{"specs/defects/flood.semo", "specs/defects/strategy.xml"}));
 
-TEST(Lowering, ScoutingLeaderBlockHasElectionsHeartbeatsAndTakeovers) {
+TEST(Lowering, ScoutingLeaderBlocksHaveElectionsHeartbeatsAndTakeovers) {
   auto l = load("specs/examples/scouting/scouting.semo", "specs/examples/scouting/strategy.xml");
   ASSERT_TRUE(l->translation.has_value());
   const Translation& t = *l->translation;
   const model::Index ev3_0 = l->mission->findRobot("ev3_0"), ev3_1 = l->mission->findRobot("ev3_1");
-  std::size_t elected = 0, notElected = 0, heartbeats = 0;
-  std::vector<model::Index> takeovers;
+  const model::Index burger_0 = l->mission->findRobot("burger_0"), burger_1 = l->mission->findRobot("burger_1");
+  // Two leader blocks: ReportPapers among the Ev3s (capable of ColorSensor), WatchLight among the
+  // Burgers (capable of LightSensor).
+  struct Counts {
+    std::size_t elected = 0, notElected = 0, heartbeats = 0;
+    std::vector<model::Index> takeovers;
+  };
+  std::map<model::Index, Counts> blocks;
   for (std::size_t i = 0; i < t.lowering.rules.size(); ++i) {
     const RuleMeaning& m = t.lowering.rules[i];
     for (const lowering::Guard& g : m.guards) {
-      if (g.kind == lowering::Guard::Kind::Elected) ++elected;
-      if (g.kind == lowering::Guard::Kind::NotElected) ++notElected;
+      if (g.kind == lowering::Guard::Kind::Elected) ++blocks[g.index].elected;
+      if (g.kind == lowering::Guard::Kind::NotElected) ++blocks[g.index].notElected;
     }
     if (m.kind == RuleMeaning::Kind::HeartbeatPeriod) {
-      ++heartbeats;
+      ++blocks[m.index].heartbeats;
       EXPECT_EQ(t.model.rules[i].kind, ir::RuleKind::Timer);
     }
-    if (m.kind == RuleMeaning::Kind::Takeover) takeovers.push_back(m.robot);
+    if (m.kind == RuleMeaning::Kind::Takeover) blocks[m.index].takeovers.push_back(m.robot);
   }
-  // Both Ev3s are candidates: each forms the block (Elected) or follows (NotElected). Heartbeats
-  // are not lost in this mission (no `loss heartbeats`), so one heartbeat rule; one takeover each.
-  EXPECT_EQ(elected, 2u);
-  EXPECT_EQ(notElected, 2u);
-  EXPECT_EQ(heartbeats, 1u);
-  std::sort(takeovers.begin(), takeovers.end());
-  EXPECT_EQ(takeovers, (std::vector<model::Index>{ev3_0, ev3_1}));
+  ASSERT_EQ(blocks.size(), 2u);
+  std::vector<std::vector<model::Index>> candidates;
+  for (auto& [index, c] : blocks) {
+    // Both candidates of a block form it (Elected) or follow (NotElected). Heartbeats are not lost
+    // in this mission (no `loss heartbeats`), so one heartbeat rule per block; one takeover each.
+    EXPECT_EQ(c.elected, 2u);
+    EXPECT_EQ(c.notElected, 2u);
+    EXPECT_EQ(c.heartbeats, 1u);
+    std::sort(c.takeovers.begin(), c.takeovers.end());
+    candidates.push_back(c.takeovers);
+  }
+  std::sort(candidates.begin(), candidates.end());
+  std::vector<std::vector<model::Index>> expected = {{ev3_0, ev3_1}, {burger_0, burger_1}};
+  for (auto& e : expected) std::sort(e.begin(), e.end());
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(candidates, expected);
 }
 
 TEST(Lowering, SwarmGroupServiceSharesKnowledgeAndEndsAtItsGoal) {
