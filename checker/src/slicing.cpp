@@ -2,6 +2,7 @@
 // the kept variables alone can tell.
 #include "semo/checker/slicing.hpp"
 
+#include "semo/checker/compiled_model.hpp"
 #include "semo/checker/fairness.hpp"
 
 #include <algorithm>
@@ -199,6 +200,63 @@ bool usesNext(const ir::Ltl& f) {
   return std::any_of(f.args.begin(), f.args.end(), [](const ir::Ltl& g) { return usesNext(g); });
 }
 
+namespace {
+
+// Whether the slice sees exactly when a group is enabled: the disjunction of its rules' guards
+// weakened to the kept variables (which holds wherever one of the guards may) holds only where,
+// whatever the removed variables hold, one of the guards does. Decided by going through the values
+// of the variables the guards read (when they have at most 65,536 combinations; otherwise no).
+bool enabledExactly(const ir::Model& model, const std::vector<std::uint32_t>& members, const std::vector<char>& neverFires,
+                    const std::vector<char>& keep, const std::vector<std::int32_t>& newId, const Abstractor& abs) {
+  constexpr std::uint64_t kMaxCombinations = 1u << 16;
+  std::vector<char> reads(model.variables.size(), 0);
+  std::vector<Program> guards, weakened;
+  for (std::uint32_t r : members) {
+    if (r < neverFires.size() && neverFires[r] != 0) continue;
+    markVariablesRead(model.rules[r].guard, reads);
+    guards.emplace_back(model.rules[r].guard);
+    weakened.emplace_back(abs.upper(model.rules[r].guard));
+  }
+  std::vector<ir::VarId> kept, removed;
+  std::uint64_t combinations = 1;
+  for (ir::VarId v = 0; v < reads.size(); ++v) {
+    if (reads[v] == 0) continue;
+    (keep[v] != 0 ? kept : removed).push_back(v);
+    combinations *= static_cast<std::uint64_t>(static_cast<std::int64_t>(model.variables[v].max) - model.variables[v].min + 1);
+    if (combinations > kMaxCombinations) return false;
+  }
+  std::vector<Value> values(model.variables.size(), 0), sliceValues(keep.size(), 0);
+  // Odometer over a list of variables; false once every combination has been seen.
+  auto first = [&](const std::vector<ir::VarId>& vars) {
+    for (ir::VarId v : vars) values[v] = model.variables[v].min;
+  };
+  auto next = [&](const std::vector<ir::VarId>& vars) {
+    for (ir::VarId v : vars) {
+      if (values[v] < model.variables[v].max) {
+        ++values[v];
+        return true;
+      }
+      values[v] = model.variables[v].min;
+    }
+    return false;
+  };
+  auto any = [](const std::vector<Program>& ps, const Value* at) {
+    return std::any_of(ps.begin(), ps.end(), [&](const Program& p) { return p.eval(at) != 0; });
+  };
+  first(kept);
+  do {
+    for (ir::VarId v : kept) sliceValues[static_cast<std::size_t>(newId[v])] = values[v];
+    if (!any(weakened, sliceValues.data())) continue;
+    first(removed);
+    do {
+      if (!any(guards, values.data())) return false;
+    } while (next(removed));
+  } while (next(kept));
+  return true;
+}
+
+}  // namespace
+
 // The slice keeping `keep`, without a property; rules marked in `neverFires` are left out.
 Slice sliceVariables(const ir::Model& model, const std::vector<char>& keep, const std::vector<char>& neverFires) {
   auto dead = [&](std::uint32_t r) { return r < neverFires.size() && neverFires[r] != 0; };
@@ -227,14 +285,21 @@ Slice sliceVariables(const ir::Model& model, const std::vector<char>& keep, cons
     }
     return !assignsAny;
   };
-  // A group keeps its fairness only when the slice sees every rule of it, with its exact guard:
-  // else it cannot tell whether the group stays enabled, nor whether it was taken.
+  // A group keeps its fairness only when the slice sees every rule of it, and sees exactly when the
+  // group is enabled: else it cannot tell whether the group stays enabled, nor whether it was
+  // taken. Each guard exact will do; so will guards that split on removed variables, as the
+  // branches of an `if` on a removed condition do, when their disjunction is exact
+  // (enabledExactly).
   const Fairness fairness = Fairness::of(model);
   std::vector<char> groupKept(fairness.groups(), 1);
   for (std::uint32_t g = 0; g < fairness.groups(); ++g) {
+    bool allExact = true;
     for (std::uint32_t r : fairness.members[g]) {
-      if (!dead(r) && (!assignsKept(model.rules[r]) || !abs.exact(model.rules[r].guard))) groupKept[g] = 0;
+      if (dead(r)) continue;
+      if (!assignsKept(model.rules[r])) groupKept[g] = 0;
+      allExact = allExact && abs.exact(model.rules[r].guard);
     }
+    if (groupKept[g] != 0 && !allExact && !enabledExactly(model, fairness.members[g], neverFires, keep, newId, abs)) groupKept[g] = 0;
   }
 
   for (std::uint32_t r = 0; r < model.rules.size(); ++r) {

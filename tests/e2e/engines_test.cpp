@@ -55,7 +55,7 @@ std::vector<Input> inputs() {
 // The engines, as `check` options. The explicit searches are bounded, so that a model beyond them
 // gives "unknown" rather than a long wait; a bound never makes a verdict wrong. `auto` runs as a
 // user runs it, with its default budgets: it must decide what the bounded ones leave open (patrol's
-// knowledge convergence needs a slice of 4.5 million states).
+// knowledge convergence needs a slice of 4.5 million states, searched symbolically).
 const std::vector<std::pair<std::string, std::string>> kEngines = {
     {"explicit", "--max-states 1000000"},
     {"explicit, no symmetry, no slicing", "--max-states 1000000 --no-symmetry --no-slicing"},

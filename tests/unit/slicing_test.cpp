@@ -215,6 +215,40 @@ TEST(LassoCheck, RefusesWhatIsNotAFairViolatingLasso) {
   EXPECT_FALSE(checkLasso(m, t, m.properties[0]).valid);
 }
 
+// A group whose rules split on a removed variable (the two branches of an `if` on it) is enabled
+// exactly where the kept variables say: it keeps its fairness, and the slice without the variable
+// proves what needs it. Two rules that do not cover every value of the removed variable do not.
+TEST(Slicing, AGroupSplitOnARemovedVariableKeepsItsFairnessWhenItsBranchesCoverIt) {
+  const std::string split =
+      "semo-ir 1;\nvar pc : 0..1 = 0;\nvar c : bool = false;\nvar slot : 0..2 = 0;\n"
+      "rule yes @fair(at0) : pc == 0 && c -> pc' = 1;\n"
+      "rule no @fair(at0) : pc == 0 && !c -> pc' = 1;\n"
+      "rule flip @fair : true -> c' = !c;\n"
+      "rule fill : slot < 2 -> slot' = slot + 1;\n"
+      "property p : eventually {pc == 1};\n";
+  ir::Model m = test::parseIr(split);
+  Slice s = sliceModel(m, 0, std::vector<char>(m.variables.size(), 0));
+  ASSERT_EQ(s.variables.size(), 1u);
+  ASSERT_EQ(s.model.rules.size(), 2u);
+  EXPECT_TRUE(s.model.rules[0].weaklyFair && s.model.rules[1].weaklyFair);
+  EXPECT_EQ(s.fairnessDropped, 0u);
+  LivenessResult r;
+  EXPECT_EQ(verdict(split, true, &r), Verdict::Proven);
+  EXPECT_EQ(r.methods[0].keptVariables, 1u);  // proven on the slice of pc alone
+  // Branches on slot == 1 and slot == 2 leave slot == 0 out: the group may be disabled where the
+  // slice cannot see it, so it loses its fairness.
+  ir::Model partial = test::parseIr(
+      "semo-ir 1;\nvar pc : 0..1 = 0;\nvar slot : 0..2 = 0;\n"
+      "rule one @fair(at0) : pc == 0 && slot == 1 -> pc' = 1;\n"
+      "rule two @fair(at0) : pc == 0 && slot == 2 -> pc' = 1;\n"
+      "rule fill : slot < 2 -> slot' = slot + 1;\n"
+      "property p : eventually {pc == 1};\n");
+  Slice t = sliceModel(partial, 0, std::vector<char>(partial.variables.size(), 0));
+  ASSERT_EQ(t.model.rules.size(), 2u);
+  EXPECT_FALSE(t.model.rules[0].weaklyFair);
+  EXPECT_EQ(t.fairnessDropped, 2u);
+}
+
 // --- control facts ------------------------------------------------------------------------------
 
 // A `default` transition out of a mode whose plan never finishes there never fires, and a test of a

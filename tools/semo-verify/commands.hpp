@@ -57,7 +57,7 @@ struct CheckOptions {
   bool symmetry = true;
   bool slicing = true;
   bool symbolic = true;
-  std::uint64_t sliceStates = 5'000'000;  // LivenessOptions::sliceStates
+  std::uint64_t sliceStates = 500'000;  // LivenessOptions::sliceStates
   bool safetyOnly = false;
   unsigned threads = 0;  // 0: one per core
   std::uint64_t maxMemoryMiB = 8192;

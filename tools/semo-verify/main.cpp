@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
     cmd->add_flag_callback("--no-symbolic", [&check] { check.symbolic = false; },
                            "Give up on a slice too large to enumerate instead of searching it as decision diagrams");
     cmd->add_option("--slice-states", check.sliceStates,
-                    "Product states one slice of the model may take (default 5000000; --max-states, if lower, bounds it too)")
+                    "Product states one slice of the model may take (default 500000; --max-states, if lower, bounds it too)")
         ->check(CLI::Range(std::uint64_t{1}, UINT64_MAX));
     cmd->add_option("--threads", check.threads, "Threads for the searches (default: one per core; the results do not depend on it)")
         ->check(CLI::Range(1u, 256u));
