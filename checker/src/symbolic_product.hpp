@@ -125,14 +125,19 @@ class SymbolicProduct {
     bdd reach = initial & start & labels_;
     // Each rule's product steps from everything reached so far, added before the next rule looks
     // (chaining): a set closed under many steps has a small diagram, where a frontier, or a
-    // frontier grown rule by rule, often has a large one.
+    // frontier grown rule by rule, often has a large one. The rules are taken last to first: a
+    // translated model lists each robot's own steps first and the deliveries, losses, crashes and
+    // timers after them, so a message is delivered in the round after it is sent rather than in
+    // the same one, and the set grows a hop at a time. On scouting's mode_agreement cone without
+    // crashes (61 variables, 1.2 * 10^14 states) that took 17 s against 129 s first to last (a
+    // peak of 343,000 nodes against 527,000 and more), the same set either way.
     int rounds = 0;
     bdd before = bddfalse;
     while (reach != before) {
       before = reach;
       reach |= automatonStep(reach & !enabledFair_);  // time passing where nothing fair can step
-      for (const Rule& r : rules_) {
-        reach |= automatonStep(bdd_replace(bdd_appex(reach, r.relation, bddop_and, r.currentSet), r.toCurrent));
+      for (auto r = rules_.rbegin(); r != rules_.rend(); ++r) {
+        reach |= automatonStep(bdd_replace(bdd_appex(reach, r->relation, bddop_and, r->currentSet), r->toCurrent));
         check();
       }
       progressOn(reach, static_cast<std::uint32_t>(++rounds));
