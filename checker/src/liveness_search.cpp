@@ -132,15 +132,15 @@ constexpr std::uint64_t kRoundRobinBudget = 2'000'000;
 
 // One property: on slices first (when asked, and the formula is stutter-insensitive), else, or when
 // no slice decides, on the whole product.
-Outcome decide(const CompiledModel& cm, std::size_t k, const SearchLimits& limits, const LivenessOptions& options,
-               Clock::time_point start, const Symmetry* symmetry) {
+Outcome decide(const CompiledModel& cm, const ControlFacts& facts, std::size_t k, const SearchLimits& limits,
+               const LivenessOptions& options, Clock::time_point start, const Symmetry* symmetry) {
   const ir::Property& prop = cm.model().properties[k];
   if (!options.slicing || usesNext(prop.formula)) {
     Outcome o = checkProperty(cm, prop, limits, start, symmetry);
     o.method.states = o.states;
     return o;
   }
-  detail::SlicedOutcome sliced = detail::checkSliced(cm, k, limits, options.sliceStates, options.symbolic);
+  detail::SlicedOutcome sliced = detail::checkSliced(cm, facts, k, limits, options.sliceStates, options.symbolic);
   LivenessMethod method{true, sliced.keptVariables, sliced.refinements, sliced.states, {}};
   method.symbolic = sliced.symbolic;
   method.symbolicStates = sliced.symbolicStates;
@@ -198,6 +198,16 @@ LivenessResult checkLiveness(const ir::Model& model, const SearchLimits& limits,
   const Symmetry symmetry = limits.symmetry ? Symmetry::find(model) : Symmetry();
   const Symmetry* reduce = symmetry.empty() ? nullptr : &symmetry;
   LivenessResult result;
+  // What the robots' control variables reach (slicing.hpp), for every property's slices: once.
+  const ControlFacts facts = options.slicing ? controlFacts(model) : ControlFacts{};
+  if (std::getenv("SEMO_DEBUG_SLICING") != nullptr) {
+    std::size_t dead = 0;
+    for (std::size_t r = 0; r < facts.neverFires.size(); ++r) {
+      if (facts.neverFires[r] != 0) ++dead, std::fprintf(stderr, "[slice] never fires: %s\n", model.rules[r].name.c_str());
+    }
+    std::fprintf(stderr, "[slice] control facts: %zu rules never fire, %zu conjuncts implied, %zu robots skipped\n", dead,
+                 facts.droppedConjuncts, facts.robotsSkipped);
+  }
   // The properties' products are independent: up to `threads` are searched at once, each within
   // --max-states and its share of --max-memory; only the first worker reports progress.
   const std::size_t n = model.properties.size();
@@ -210,7 +220,7 @@ LivenessResult checkLiveness(const ir::Model& model, const SearchLimits& limits,
     if (worker != 0) mine.onProgress = nullptr;
     for (std::size_t k = next++; k < n; k = next++) {
       const auto begin = Clock::now();
-      outcomes[k] = decide(cm, k, mine, options, start, reduce);
+      outcomes[k] = decide(cm, facts, k, mine, options, start, reduce);
       outcomes[k].method.seconds = std::chrono::duration<double>(Clock::now() - begin).count();
     }
   };
@@ -223,7 +233,7 @@ LivenessResult checkLiveness(const ir::Model& model, const SearchLimits& limits,
     for (std::size_t k = 0; k < n; ++k) {
       if (!outcomes[k].whole && outcomes[k].why.rfind("--max-memory", 0) == 0) {
         const auto begin = Clock::now();
-        outcomes[k] = decide(cm, k, limits, options, start, reduce);
+        outcomes[k] = decide(cm, facts, k, limits, options, start, reduce);
         outcomes[k].method.seconds = std::chrono::duration<double>(Clock::now() - begin).count();
       }
     }

@@ -205,17 +205,8 @@ void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLim
   out.why += "; a hunt on the property's cone of " + std::to_string(cone.variables.size()) + " variables without crashes: " + found;
 }
 
-SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const SearchLimits& limits, std::uint64_t sliceStates,
-                          bool symbolic) {
-  const ControlFacts facts = controlFacts(full.model());
-  if (std::getenv("SEMO_DEBUG_SLICING") != nullptr) {
-    std::size_t dead = 0;
-    for (std::size_t r = 0; r < facts.neverFires.size(); ++r) {
-      if (facts.neverFires[r] != 0) ++dead, std::fprintf(stderr, "[slice] never fires: %s\n", full.model().rules[r].name.c_str());
-    }
-    std::fprintf(stderr, "[slice] control facts: %zu rules never fire, %zu conjuncts implied, %zu robots skipped\n", dead,
-                 facts.droppedConjuncts, facts.robotsSkipped);
-  }
+SlicedOutcome checkSliced(const CompiledModel& full, const ControlFacts& facts, std::size_t property, const SearchLimits& limits,
+                          std::uint64_t sliceStates, bool symbolic) {
   SlicedOutcome out = refineSlices(full, facts, property, limits, sliceStates, symbolic);
   if (symbolic && out.property.verdict == Verdict::Unknown) huntOnCone(full, property, limits, out, &facts);
   return out;

@@ -37,7 +37,8 @@ struct SlicedOutcome {
 void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLimits& limits, SlicedOutcome& out,
                 const ControlFacts* facts = nullptr);
 
-SlicedOutcome checkSliced(const CompiledModel& full, std::size_t property, const SearchLimits& limits, std::uint64_t sliceStates,
-                          bool symbolic);
+// `facts` are the model's control facts (slicing.hpp), computed once for all its properties.
+SlicedOutcome checkSliced(const CompiledModel& full, const ControlFacts& facts, std::size_t property, const SearchLimits& limits,
+                          std::uint64_t sliceStates, bool symbolic);
 
 }  // namespace semo::checker::detail

@@ -310,17 +310,17 @@ TEST(Slicing, ControlFactsHoldOnEveryReachableStateOfRandomModels) {
     dead += static_cast<std::size_t>(std::count(facts.neverFires.begin(), facts.neverFires.end(), 1));
     const Stepper whole(m), simplified(facts.model);
     std::set<Stepper::State> seen{whole.initial()};
-    std::vector<Stepper::State> todo{whole.initial()};
-    while (!todo.empty()) {
-      const Stepper::State s = todo.back();
-      todo.pop_back();
+    std::vector<Stepper::State> frontier{whole.initial()};
+    while (!frontier.empty()) {
+      const Stepper::State s = frontier.back();
+      frontier.pop_back();
       for (std::size_t r = 0; r < m.rules.size(); ++r) {
         const bool enabled = whole.enabled(s, r);
         ASSERT_FALSE(enabled && facts.neverFires[r]) << m.rules[r].name << " fires in " << whole.describe(s);
         ASSERT_EQ(simplified.enabled(s, r), enabled) << m.rules[r].name << " in " << whole.describe(s);
       }
       for (auto& [choice, next] : whole.successors(s)) {
-        if (seen.insert(next).second) todo.push_back(next);
+        if (seen.insert(next).second) frontier.push_back(next);
       }
     }
   }
