@@ -323,6 +323,14 @@ void addTaskGraphs(Report& report, std::vector<sdf::TaskGraph> graphs, const sdf
 
 std::optional<Report> verify(const ir::Model& model, const model::MissionModel* mission, const VerifyOptions& options,
                              DiagnosticEngine& diags) {
+  for (const ir::Rule& r : model.rules) {
+    // The searches number a rule's outcomes in 8 bits; the quantitative engine takes more.
+    if (options.properties && r.branches.size() > ir::kMaxSearchedOutcomes) {
+      diags.error({}, "rule '" + r.name + "' has " + std::to_string(r.branches.size()) + " outcomes; the searches of `check` take rules of at most " +
+                          std::to_string(ir::kMaxSearchedOutcomes) + " (only the quantitative engine takes more)");
+      return std::nullopt;
+    }
+  }
   Report out;
   out.modelFingerprint = modelFingerprint(model);
   out.assumptions = model.assumptions;

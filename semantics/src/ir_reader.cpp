@@ -129,6 +129,12 @@ class Reader {
     return t;
   }
   bool isPunct(std::string_view p) const { return peek().kind == T::Punct && peek().text == p; }
+  // `INT / INT :` from `ahead` on: a probability written as a fraction (an expression never has
+  // `:` after a division).
+  bool startsFraction(std::size_t ahead) const {
+    auto punct = [this](std::size_t k, std::string_view p) { return peek(k).kind == T::Punct && peek(k).text == p; };
+    return peek(ahead).kind == T::Int && punct(ahead + 1, "/") && peek(ahead + 2).kind == T::Int && punct(ahead + 3, ":");
+  }
   bool isWord(std::string_view w) const { return peek().kind == T::Name && peek().text == w; }
   bool accept(std::string_view p) {
     if (!isPunct(p)) return false;
@@ -376,7 +382,18 @@ class Reader {
     double total = 0;
     do {
       Branch b;
-      if (peek().kind == T::Number || (peek().kind == T::Int && peek(1).kind == T::Punct && peek(1).text == ":")) {
+      if (startsFraction(0)) {
+        const Token& n = advance();
+        advance();  // '/'
+        const Token& d = advance();
+        const std::int64_t num = integer(n, false), den = integer(d, false);
+        if (den == 0) fail(d, "a probability's denominator must not be 0");
+        if (num <= 0 || num > den) fail(n, "a probability must be in (0, 1]");
+        b.numerator = static_cast<std::uint32_t>(num);
+        b.denominator = static_cast<std::uint32_t>(den);
+        b.probability = static_cast<double>(num) / static_cast<double>(den);
+        expect(":", "after the probability");
+      } else if (peek().kind == T::Number || (peek().kind == T::Int && peek(1).kind == T::Punct && peek(1).text == ":")) {
         const Token& p = advance();
         b.probability = std::strtod(std::string(p.text).c_str(), nullptr);
         if (!(b.probability > 0 && b.probability <= 1)) fail(p, "a probability must be in (0, 1]");
@@ -399,7 +416,9 @@ class Reader {
         } while (accept(","));
       }
       r.branches.push_back(std::move(b));
-      if (r.branches.size() > 255) fail(peek(), "a rule has at most 255 outcomes");  // traces keep the outcome in 8 bits
+      // The qualitative engines keep an outcome in 8 bits; a rule with more (a synchronous round of
+      // many random choices) is for the quantitative engine, which says so to the others.
+      if (r.branches.size() > kMaxOutcomes) fail(peek(), "a rule has at most " + std::to_string(kMaxOutcomes) + " outcomes");
     } while (accept("+"));
     if (std::fabs(total - 1.0) > 1e-9) {  // a single outcome too: `-> 0.5 : x' = 1;` is an error
       fail(peek(), "the probabilities of rule '" + r.name + "' add up to " + std::to_string(total) + ", not 1");
@@ -481,7 +500,7 @@ class Reader {
       for (const auto& [spelling, op] : levels[static_cast<std::size_t>(level)]) {
         if (!isPunct(spelling)) continue;
         // `+ 0.25 :` starts the next outcome of a probabilistic rule: no expression has a decimal.
-        if (op == Op::Add && peek(1).kind == T::Number) break;
+        if (op == Op::Add && (peek(1).kind == T::Number || startsFraction(1))) break;
         advance();
         left = Expr::binary(op, std::move(left), binary(level + 1));
         matched = true;

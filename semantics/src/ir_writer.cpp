@@ -220,7 +220,9 @@ std::string toText(const Model& m) {
     for (std::size_t b = 0; b < r.branches.size(); ++b) {
       const Branch& branch = r.branches[b];
       if (b > 0) out << "\n  +";
-      if (r.branches.size() > 1) {
+      if (r.branches.size() > 1 && branch.denominator != 0) {
+        out << ' ' << branch.numerator << '/' << branch.denominator << " :";
+      } else if (r.branches.size() > 1) {
         // The shortest exact form, always with a decimal point ("0.00001", "1.0", never "1e-05"):
         // the reader takes `+ <decimal>` as the start of the next outcome.
         char buffer[512];

@@ -315,6 +315,24 @@ rule r : true -> 0.75 : x' = y + 1, y' = 2 + 0.25 : x' = 0;
   EXPECT_EQ(r.branches[1].assignments.size(), 1u);
 }
 
+TEST(IrText, ProbabilitiesAsFractionsAreKeptExactAndWrittenBackAsFractions) {
+  // 1/27 has no exact decimal: the fraction is kept, and `+ 1/27 :` starts the next outcome.
+  ir::Model m = parse("semo-ir 1;\nvar x : 0..3;\nrule r : true -> 26/27 : x' = x / 2 + 1/27 : x' = 3;\n");
+  const ir::Rule& r = m.rules.at(0);
+  ASSERT_EQ(r.branches.size(), 2u);
+  EXPECT_EQ(shape(m, r.branches[0].assignments[0].value), "(div x 2)");
+  EXPECT_EQ(r.branches[1].numerator, 1u);
+  EXPECT_EQ(r.branches[1].denominator, 27u);
+  EXPECT_DOUBLE_EQ(r.branches[1].probability, 1.0 / 27.0);
+  const std::string text = ir::toText(m);
+  EXPECT_NE(text.find("+ 1/27 : x' = 3"), std::string::npos) << text;
+  EXPECT_EQ(ir::toText(parse(text)), text);
+  // Many outcomes (a synchronous round of ten coin flips) are read; `check` refuses more than 256.
+  std::string many = "semo-ir 1;\nvar x : 0..1023;\nrule r : true ->";
+  for (int o = 0; o < 1024; ++o) many += (o == 0 ? " " : " + ") + std::string("1/1024 : x' = ") + std::to_string(o);
+  EXPECT_EQ(parse(many + ";\n").rules.at(0).branches.size(), 1024u);
+}
+
 TEST(IrText, ExtremeIntegers) {
   ir::Model m = parse("semo-ir 1;\nvar x : -2147483648..2147483647 = -2147483648;\ninvariant i : x >= -2147483648;\n");
   ASSERT_EQ(m.variables.size(), 1u);
@@ -355,6 +373,12 @@ INSTANTIATE_TEST_SUITE_P(
                  "3:30: the probabilities of rule 'r' add up to 0.500000, not 1"},
         BadInput{"probability_above_one", "semo-ir 1;\nvar x : 0..3;\nrule r : true -> 1.5 : x' = 1;\n",
                  "3:18: a probability must be in (0, 1]"},
+        BadInput{"fraction_above_one", "semo-ir 1;\nvar x : 0..3;\nrule r : true -> 3/2 : x' = 1;\n",
+                 "3:18: a probability must be in (0, 1]"},
+        BadInput{"fraction_over_zero", "semo-ir 1;\nvar x : 0..3;\nrule r : true -> 1/0 : x' = 1;\n",
+                 "3:20: a probability's denominator must not be 0"},
+        BadInput{"fractions_not_one", "semo-ir 1;\nvar x : 0..3;\nrule r : true -> 1/3 : x' = 1 + 1/3 : x' = 2;\n",
+                 "3:45: the probabilities of rule 'r' add up to 0.666667, not 1"},
         BadInput{"unknown_attribute", "semo-ir 1;\nvar x : 0..3 @colour(red);\n", "2:15: unknown attribute '@colour' here"},
         BadInput{"attribute_in_wrong_place", "semo-ir 1;\nvar x : 0..3;\ninvariant i @fair : x > 0;\n",
                  "3:14: unknown attribute '@fair' here"},

@@ -86,6 +86,9 @@ int runCheck(const CheckOptions& options) {
   DiagnosticEngine diags(built->sources);
   std::optional<checker::Report> report =
       checker::verify(*built->model, built->mission ? &*built->mission : nullptr, verifyOptions(options), diags);
+  diags.sortByPosition();
+  diags.print(std::cerr);
+  if (!report) return kBadInput;
   const bool searchedLong = report && (report->safety.seconds >= 1.0 || report->liveness.seconds >= 1.0);
   if (searchedLong && !options.json && isatty(STDERR_FILENO) != 0) std::cerr << "\n";  // after the progress line
   if (options.json) std::cout << reportJson(*report, *built->model, options.model).dump(2) << "\n";

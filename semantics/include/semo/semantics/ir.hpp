@@ -12,6 +12,10 @@ namespace semo::ir {
 
 using VarId = std::uint32_t;
 inline constexpr std::int32_t kNoRobot = -1;
+// The most outcomes a rule may have (a synchronous round of ten coin flips has 1,024). The
+// qualitative engines number a rule's outcomes in 8 bits and take at most kMaxSearchedOutcomes.
+inline constexpr std::size_t kMaxOutcomes = 65536;
+inline constexpr std::size_t kMaxSearchedOutcomes = 256;
 
 struct Variable {
   std::string name;
@@ -65,6 +69,9 @@ struct Assignment {
 struct Branch {
   double probability = 1.0;
   std::vector<Assignment> assignments;  // simultaneous: every right-hand side reads the old state
+  // When the text form wrote the probability as a fraction (`1/27`): its exact value, kept so that
+  // it is written back the same way; 0/0 otherwise.
+  std::uint32_t numerator = 0, denominator = 0;
 };
 
 // Where a rule comes from in the mission: the construct and its position (empty for a model

@@ -1,0 +1,70 @@
+#pragma once
+// How likely and how soon: the IR read as a Markov decision process. Each reachable state offers
+// one action per enabled rule (the interleaving: which robot moves is a scheduler's choice), and an
+// action leads to its outcomes with their probabilities (ir::Branch). A state where no rule is
+// enabled stays where it is (a run that ends stays in its last state). When every reachable state
+// offers at most one action the model is a Markov chain and answers are exact up to floating
+// point (sparse LU); otherwise they are the minimum and maximum over all schedulers, by value
+// iteration. specs/quantitative.md gives the definitions and the published models the tests
+// reproduce.
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "semo/semantics/ir.hpp"
+
+namespace semo::checker {
+
+struct MarkovModel {
+  std::vector<std::vector<std::int32_t>> states;  // index 0: the initial state
+  // State s offers the actions [actionStart[s], actionStart[s + 1]); action a is a step of rule
+  // actionRule[a] and leads to successor[k] with probability[k] for k in
+  // [outcomeStart[a], outcomeStart[a + 1]) (outcomes leading to one state are merged).
+  std::vector<std::uint32_t> actionStart, actionRule, outcomeStart, successor;
+  std::vector<double> probability;
+
+  [[nodiscard]] std::size_t size() const { return states.size(); }
+  [[nodiscard]] std::size_t actions() const { return actionRule.size(); }
+  // Every state offers at most one action: a Markov chain (no scheduler to range over).
+  [[nodiscard]] bool deterministic() const;
+};
+
+struct MarkovLimits {
+  std::size_t maxStates = 5'000'000;
+};
+
+// A model too large for the limits, or a step that leaves a declared range.
+struct MarkovError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// The reachable states and their actions, breadth-first from the initial state.
+MarkovModel buildMarkovModel(const ir::Model& model, const MarkovLimits& limits = {});
+
+// Per state: whether `condition` (an expression of the model) holds.
+std::vector<char> statesWhere(const MarkovModel& m, const ir::Model& model, const ir::Expr& condition);
+
+enum class Optimum { Min, Max };
+
+// P(target reached within t steps) from the initial state, for t = 0 .. horizon.
+std::vector<double> boundedReachability(const MarkovModel& m, const std::vector<char>& target, std::size_t horizon,
+                                        Optimum optimum = Optimum::Max);
+
+struct QuantitativeResult {
+  double value = 0;
+  bool infinite = false;  // an expectation: the target is missed with positive probability
+  std::string method;     // how it was computed, and to what precision
+};
+
+// P(target eventually reached) from the initial state.
+QuantitativeResult reachability(const MarkovModel& m, const std::vector<char>& target, Optimum optimum = Optimum::Max);
+
+// The expected total reward until the target is reached, a step of rule r earning rewardOfRule[r]
+// (for example 1 for every rule: the expected number of steps). Infinite where the target is
+// missed with positive probability (for Min: under every scheduler; for Max: under some).
+QuantitativeResult expectedReward(const MarkovModel& m, const std::vector<char>& target, const std::vector<double>& rewardOfRule,
+                                  Optimum optimum = Optimum::Min);
+
+}  // namespace semo::checker

@@ -1,0 +1,373 @@
+#include "semo/checker/markov.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <unordered_map>
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseLU>
+#include <fmt/format.h>
+
+#include "semo/checker/compiled_model.hpp"
+#include "semo/checker/stepper.hpp"
+
+namespace semo::checker {
+namespace {
+
+using State = std::vector<std::int32_t>;
+
+struct StateHash {
+  std::size_t operator()(const State& s) const noexcept {
+    std::uint64_t h = 1469598103934665603ull;
+    for (std::int32_t v : s) h = (h ^ static_cast<std::uint32_t>(v)) * 1099511628211ull;
+    return static_cast<std::size_t>(h);
+  }
+};
+
+// A change below this between two sweeps ends value iteration. Not a bound on the error (value
+// iteration cannot give one without more machinery); the method text says so.
+constexpr double kConvergence = 1e-12;
+constexpr std::size_t kMaxSweeps = 10'000'000;
+
+template <typename F>
+void forEachOutcome(const MarkovModel& m, std::uint32_t a, F&& f) {
+  for (std::uint32_t k = m.outcomeStart[a]; k < m.outcomeStart[a + 1]; ++k) f(m.successor[k], m.probability[k]);
+}
+
+// The states from which `target` can be reached at all (some action, some outcome, step by step).
+std::vector<char> canReach(const MarkovModel& m, const std::vector<char>& target, const std::vector<char>& through) {
+  std::vector<std::vector<std::uint32_t>> predecessors(m.size());
+  for (std::uint32_t s = 0; s < m.size(); ++s) {
+    for (std::uint32_t a = m.actionStart[s]; a < m.actionStart[s + 1]; ++a) {
+      forEachOutcome(m, a, [&](std::uint32_t t, double) { predecessors[t].push_back(s); });
+    }
+  }
+  std::vector<char> reached(target);
+  std::deque<std::uint32_t> todo;
+  for (std::uint32_t s = 0; s < m.size(); ++s) {
+    if (reached[s] != 0) todo.push_back(s);
+  }
+  while (!todo.empty()) {
+    const std::uint32_t t = todo.front();
+    todo.pop_front();
+    for (std::uint32_t s : predecessors[t]) {
+      if (reached[s] == 0 && through[s] != 0) reached[s] = 1, todo.push_back(s);
+    }
+  }
+  return reached;
+}
+
+// The states where some scheduler keeps away from `target` for ever (probability 0 of reaching it):
+// the largest set of non-target states each of which has an action staying inside it (a state with
+// no action stays where it is).
+std::vector<char> someSchedulerAvoids(const MarkovModel& m, const std::vector<char>& target) {
+  std::vector<char> avoid(m.size());
+  for (std::size_t s = 0; s < m.size(); ++s) avoid[s] = target[s] == 0 ? 1 : 0;
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (std::uint32_t s = 0; s < m.size(); ++s) {
+      if (avoid[s] == 0 || m.actionStart[s] == m.actionStart[s + 1]) continue;
+      bool stays = false;
+      for (std::uint32_t a = m.actionStart[s]; a < m.actionStart[s + 1] && !stays; ++a) {
+        bool inside = true;
+        forEachOutcome(m, a, [&](std::uint32_t t, double) { inside = inside && avoid[t] != 0; });
+        stays = inside;
+      }
+      if (!stays) avoid[s] = 0, changed = true;
+    }
+  }
+  return avoid;
+}
+
+// The states from which the target is reached with probability 1: under every scheduler (Min), or
+// under some scheduler (Max, the largest set U such that from each state some action keeps to U
+// and the target can be reached inside U).
+std::vector<char> almostSurely(const MarkovModel& m, const std::vector<char>& target, Optimum optimum) {
+  std::vector<char> all(m.size(), 1);
+  if (optimum == Optimum::Min) {
+    // Every scheduler reaches it surely exactly where no scheduler can get, outside the target, to
+    // a state where some scheduler avoids it.
+    std::vector<char> outside(m.size());
+    for (std::size_t s = 0; s < m.size(); ++s) outside[s] = target[s] == 0 ? 1 : 0;
+    const std::vector<char> bad = canReach(m, someSchedulerAvoids(m, target), outside);
+    std::vector<char> sure(m.size());
+    for (std::size_t s = 0; s < m.size(); ++s) sure[s] = bad[s] == 0 ? 1 : 0;
+    return sure;
+  }
+  std::vector<char> u = all;
+  while (true) {
+    // R: the states of U that reach the target through actions staying in U.
+    std::vector<char> r(target);
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (std::uint32_t s = 0; s < m.size(); ++s) {
+        if (r[s] != 0 || u[s] == 0) continue;
+        for (std::uint32_t a = m.actionStart[s]; a < m.actionStart[s + 1]; ++a) {
+          bool inside = true, towards = false;
+          forEachOutcome(m, a, [&](std::uint32_t t, double) {
+            inside = inside && u[t] != 0;
+            towards = towards || r[t] != 0;
+          });
+          if (inside && towards) {
+            r[s] = 1, changed = true;
+            break;
+          }
+        }
+      }
+    }
+    if (r == u) return u;
+    u = r;
+  }
+}
+
+QuantitativeResult infinite(const char* why) {
+  QuantitativeResult out;
+  out.value = std::numeric_limits<double>::infinity();
+  out.infinite = true;
+  out.method = why;
+  return out;
+}
+
+// x = A x + b over the states `unknown` marks, A the one action's probabilities among them: a
+// sparse LU factorisation of I - A, BiCGSTAB where the factorisation fails.
+std::vector<double> solveChain(const MarkovModel& m, const std::vector<char>& unknown, const std::vector<double>& constant,
+                               std::string& method) {
+  std::vector<std::int64_t> column(m.size(), -1);
+  std::int64_t n = 0;
+  for (std::uint32_t s = 0; s < m.size(); ++s) {
+    if (unknown[s] != 0) column[s] = n++;
+  }
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::VectorXd b(n);
+  for (std::uint32_t s = 0; s < m.size(); ++s) {
+    if (column[s] < 0) continue;
+    entries.emplace_back(column[s], column[s], 1.0);
+    b(column[s]) = constant[s];
+    if (m.actionStart[s] == m.actionStart[s + 1]) continue;
+    forEachOutcome(m, m.actionStart[s], [&](std::uint32_t t, double p) {
+      if (column[t] >= 0) entries.emplace_back(column[s], column[t], -p);
+    });
+  }
+  Eigen::SparseMatrix<double> a(n, n);
+  a.setFromTriplets(entries.begin(), entries.end());  // duplicates add up
+  a.makeCompressed();
+  Eigen::VectorXd x;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+  lu.compute(a);
+  if (lu.info() == Eigen::Success) {
+    x = lu.solve(b);
+    method = fmt::format("exact: a Markov chain, linear equations over {} states solved by sparse LU", n);
+  } else {
+    Eigen::BiCGSTAB<Eigen::SparseMatrix<double>> iterative;
+    iterative.setTolerance(1e-14);
+    iterative.compute(a);
+    x = iterative.solve(b);
+    method = fmt::format("a Markov chain, linear equations over {} states solved by BiCGSTAB (estimated error {:.1e}; LU failed)", n,
+                         iterative.error());
+  }
+  std::vector<double> out(m.size(), 0.0);
+  for (std::uint32_t s = 0; s < m.size(); ++s) {
+    if (column[s] >= 0) out[s] = x(column[s]);
+  }
+  return out;
+}
+
+// Value iteration from 0: x(s) = constant(s) + opt over the allowed actions of sum p * x(t), over
+// the states `unknown` marks (the others keep `fixed`).
+std::vector<double> iterate(const MarkovModel& m, const std::vector<char>& unknown, const std::vector<double>& fixed,
+                            const std::vector<double>& rewardOfAction, const std::vector<char>& actionAllowed, Optimum optimum,
+                            std::string& method) {
+  std::vector<double> x = fixed;
+  std::size_t sweeps = 0;
+  for (double change = 1; change >= kConvergence && sweeps < kMaxSweeps; ++sweeps) {
+    change = 0;
+    for (std::uint32_t s = 0; s < m.size(); ++s) {
+      if (unknown[s] == 0) continue;
+      double best = optimum == Optimum::Min ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
+      bool any = false;
+      for (std::uint32_t a = m.actionStart[s]; a < m.actionStart[s + 1]; ++a) {
+        if (actionAllowed[a] == 0) continue;
+        double v = rewardOfAction[a];
+        forEachOutcome(m, a, [&](std::uint32_t t, double p) { v += p * x[t]; });
+        best = optimum == Optimum::Min ? std::min(best, v) : std::max(best, v);
+        any = true;
+      }
+      if (!any) best = x[s];
+      change = std::max(change, std::fabs(best - x[s]) / std::max(1.0, std::fabs(best)));
+      x[s] = best;  // Gauss-Seidel: later states read the new value
+    }
+  }
+  method = fmt::format("value iteration over {} states, {} sweeps, stopped when no value changed by more than {:.0e} (relative); "
+                       "not a guaranteed error bound",
+                       m.size(), sweeps, kConvergence);
+  return x;
+}
+
+}  // namespace
+
+bool MarkovModel::deterministic() const {
+  for (std::size_t s = 0; s + 1 < actionStart.size(); ++s) {
+    if (actionStart[s + 1] - actionStart[s] > 1) return false;
+  }
+  return true;
+}
+
+MarkovModel buildMarkovModel(const ir::Model& model, const MarkovLimits& limits) {
+  const Stepper stepper(model);
+  MarkovModel m;
+  std::unordered_map<State, std::uint32_t, StateHash> index;
+  auto add = [&](State s) -> std::uint32_t {
+    auto [it, fresh] = index.emplace(s, static_cast<std::uint32_t>(m.states.size()));
+    if (fresh) {
+      if (m.states.size() >= limits.maxStates) {
+        throw MarkovError(fmt::format("more than {} reachable states (the limit of the quantitative engine)", limits.maxStates));
+      }
+      m.states.push_back(std::move(s));
+    }
+    return it->second;
+  };
+  add(stepper.initial());
+  m.outcomeStart.push_back(0);
+  std::vector<std::pair<std::uint32_t, double>> merged;
+  for (std::uint32_t s = 0; s < m.states.size(); ++s) {
+    m.actionStart.push_back(static_cast<std::uint32_t>(m.actionRule.size()));
+    const State from = m.states[s];  // add() may move the vector's storage
+    for (std::size_t r : stepper.enabledRules(from)) {
+      merged.clear();
+      for (std::size_t b = 0; b < model.rules[r].branches.size(); ++b) {
+        Stepper::Outcome o = stepper.apply(from, {r, b});
+        if (!o.outOfRange.empty()) {
+          throw MarkovError(fmt::format("rule '{}' sets '{}' outside its declared range", model.rules[r].name,
+                                        model.variables[o.outOfRange.front()].name));
+        }
+        const std::uint32_t t = add(std::move(o.state));
+        auto same = std::find_if(merged.begin(), merged.end(), [t](const auto& e) { return e.first == t; });
+        if (same != merged.end()) same->second += model.rules[r].branches[b].probability;
+        else merged.emplace_back(t, model.rules[r].branches[b].probability);
+      }
+      m.actionRule.push_back(static_cast<std::uint32_t>(r));
+      for (const auto& [t, p] : merged) m.successor.push_back(t), m.probability.push_back(p);
+      m.outcomeStart.push_back(static_cast<std::uint32_t>(m.successor.size()));
+    }
+  }
+  m.actionStart.push_back(static_cast<std::uint32_t>(m.actionRule.size()));
+  return m;
+}
+
+std::vector<char> statesWhere(const MarkovModel& m, const ir::Model& model, const ir::Expr& condition) {
+  (void)model;
+  const Program program(condition);
+  std::vector<char> out(m.size());
+  for (std::size_t s = 0; s < m.size(); ++s) out[s] = program.eval(m.states[s].data()) != 0 ? 1 : 0;
+  return out;
+}
+
+std::vector<double> boundedReachability(const MarkovModel& m, const std::vector<char>& target, std::size_t horizon, Optimum optimum) {
+  std::vector<double> x(m.size()), next(m.size());
+  for (std::size_t s = 0; s < m.size(); ++s) x[s] = target[s] != 0 ? 1.0 : 0.0;
+  std::vector<double> out{x.empty() ? 0.0 : x[0]};
+  for (std::size_t t = 1; t <= horizon; ++t) {
+    for (std::uint32_t s = 0; s < m.size(); ++s) {
+      if (target[s] != 0 || m.actionStart[s] == m.actionStart[s + 1]) {
+        next[s] = x[s];
+        continue;
+      }
+      double best = optimum == Optimum::Min ? 1.0 : 0.0;
+      for (std::uint32_t a = m.actionStart[s]; a < m.actionStart[s + 1]; ++a) {
+        double v = 0;
+        forEachOutcome(m, a, [&](std::uint32_t u, double p) { v += p * x[u]; });
+        best = optimum == Optimum::Min ? std::min(best, v) : std::max(best, v);
+      }
+      next[s] = best;
+    }
+    std::swap(x, next);
+    out.push_back(x[0]);
+  }
+  return out;
+}
+
+QuantitativeResult reachability(const MarkovModel& m, const std::vector<char>& target, Optimum optimum) {
+  // Probability 0 decided on the graph first: the equations then have one solution.
+  std::vector<char> everywhere(m.size(), 1);
+  std::vector<char> zero(m.size());
+  if (optimum == Optimum::Max) {
+    const std::vector<char> reach = canReach(m, target, everywhere);
+    for (std::size_t s = 0; s < m.size(); ++s) zero[s] = reach[s] == 0 ? 1 : 0;
+  } else {
+    zero = someSchedulerAvoids(m, target);
+  }
+  const std::vector<char> one = almostSurely(m, target, optimum);
+  std::vector<char> unknown(m.size());
+  std::vector<double> fixed(m.size(), 0.0), constant(m.size(), 0.0);
+  for (std::uint32_t s = 0; s < m.size(); ++s) {
+    if (one[s] != 0) fixed[s] = 1.0;
+    unknown[s] = zero[s] == 0 && one[s] == 0 ? 1 : 0;
+  }
+  QuantitativeResult out;
+  if (unknown[0] == 0) {
+    out.value = fixed[0];
+    out.method = "exact: decided on the graph (probability 0 or 1)";
+    return out;
+  }
+  if (m.deterministic()) {
+    for (std::uint32_t s = 0; s < m.size(); ++s) {
+      if (unknown[s] == 0 || m.actionStart[s] == m.actionStart[s + 1]) continue;
+      forEachOutcome(m, m.actionStart[s], [&](std::uint32_t t, double p) { constant[s] += p * fixed[t]; });
+    }
+    out.value = solveChain(m, unknown, constant, out.method)[0];
+  } else {
+    std::vector<char> allowed(m.actions(), 1);
+    std::vector<double> none(m.actions(), 0.0);
+    out.value = iterate(m, unknown, fixed, none, allowed, optimum, out.method)[0];
+  }
+  out.value = std::clamp(out.value, 0.0, 1.0);
+  return out;
+}
+
+QuantitativeResult expectedReward(const MarkovModel& m, const std::vector<char>& target, const std::vector<double>& rewardOfRule,
+                                  Optimum optimum) {
+  // Finite exactly where the target is reached with probability 1: under some scheduler for the
+  // minimum (the others would pay for ever), under every scheduler for the maximum.
+  const std::vector<char> finite = almostSurely(m, target, optimum == Optimum::Min ? Optimum::Max : Optimum::Min);
+  if (finite[0] == 0) return infinite("infinite: the target is missed with positive probability");
+  std::vector<char> unknown(m.size());
+  for (std::size_t s = 0; s < m.size(); ++s) unknown[s] = finite[s] != 0 && target[s] == 0 ? 1 : 0;
+  std::vector<double> rewardOfAction(m.actions());
+  for (std::size_t a = 0; a < m.actions(); ++a) {
+    const std::uint32_t r = m.actionRule[a];
+    rewardOfAction[a] = r < rewardOfRule.size() ? rewardOfRule[r] : 0.0;
+  }
+  QuantitativeResult out;
+  if (m.deterministic()) {
+    std::vector<double> constant(m.size(), 0.0);
+    for (std::uint32_t s = 0; s < m.size(); ++s) {
+      if (unknown[s] != 0 && m.actionStart[s] != m.actionStart[s + 1]) constant[s] = rewardOfAction[m.actionStart[s]];
+    }
+    out.value = solveChain(m, unknown, constant, out.method)[0];
+    return out;
+  }
+  // The minimum uses only actions that keep to the finite states. Value iteration from 0 finds the
+  // least solution, which is the answer when every step there earns something; a scheduler that
+  // circles for ever for nothing would otherwise be counted as cheap.
+  std::vector<char> allowed(m.actions(), 1);
+  for (std::uint32_t s = 0; s < m.size(); ++s) {
+    if (unknown[s] == 0) continue;
+    for (std::uint32_t a = m.actionStart[s]; a < m.actionStart[s + 1]; ++a) {
+      bool inside = true;
+      forEachOutcome(m, a, [&](std::uint32_t t, double) { inside = inside && finite[t] != 0; });
+      allowed[a] = inside ? 1 : 0;
+      if (optimum == Optimum::Min && inside && !(rewardOfAction[a] > 0)) {
+        throw MarkovError(fmt::format("the minimum expected reward of a nondeterministic model with steps that earn nothing "
+                                      "(rule number {}) is not computed yet",
+                                      m.actionRule[a]));
+      }
+    }
+  }
+  std::vector<double> fixed(m.size(), 0.0);
+  out.value = iterate(m, unknown, fixed, rewardOfAction, allowed, optimum, out.method)[0];
+  return out;
+}
+
+}  // namespace semo::checker

@@ -1,0 +1,212 @@
+// The quantitative engine (checker/markov.hpp) against closed forms and published results: the
+// models are written here in the IR text form, as a user would write them.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "semo/checker/markov.hpp"
+#include "semo/frontend/diagnostics.hpp"
+#include "semo/semantics/ir_text.hpp"
+
+namespace semo::checker {
+namespace {
+
+ir::Model parse(const std::string& text) {
+  SourceManager sources;
+  DiagnosticEngine diags(sources);
+  const FileId file = sources.add("model.ir", text);
+  auto model = ir::parseText(sources, file, diags);
+  EXPECT_TRUE(model.has_value()) << text.substr(0, 400);
+  return model ? *model : ir::Model{};
+}
+
+ir::Expr condition(const std::string& text, const std::string& declarations) {
+  // The reader parses expressions inside a model: a throwaway invariant carries it.
+  ir::Model m = parse("semo-ir 1;\n" + declarations + "invariant target : " + text + ";\n");
+  return m.invariants.at(0).holds;
+}
+
+std::string declarations(const ir::Model& m) {
+  std::string out;
+  for (const ir::Variable& v : m.variables) out += "var " + v.name + " : " + std::to_string(v.min) + ".." + std::to_string(v.max) + ";\n";
+  return out;
+}
+
+std::vector<char> where(const MarkovModel& chain, const ir::Model& model, const std::string& text) {
+  return statesWhere(chain, model, condition(text, declarations(model)));
+}
+
+std::vector<double> rewardOn(const ir::Model& m, const std::string& rule) {
+  std::vector<double> out(m.rules.size(), 0.0);
+  for (std::size_t r = 0; r < m.rules.size(); ++r) out[r] = m.rules[r].name == rule ? 1.0 : 0.0;
+  return out;
+}
+
+// Two robots, one fact, each round the knower broadcasts once and the message is lost with
+// probability p: P(known by round t) = 1 - p^t, expected rounds 1 / (1 - p).
+TEST(Markov, OneFactOneBroadcastPerRoundMatchesTheClosedForm) {
+  struct Case {
+    std::string delivered, lost;
+    double p;
+  };
+  for (const Case& c : {Case{"0.8", "0.2", 0.2}, Case{"2/3", "1/3", 1.0 / 3.0}, Case{"0.5", "0.5", 0.5}, Case{"1/10", "9/10", 0.9}}) {
+    const ir::Model m = parse("semo-ir 1;\nvar b.knows : bool = false;\nrule round : !b.knows -> " + c.delivered + " : b.knows' = true + " +
+                              c.lost + " : skip;\n");
+    const MarkovModel chain = buildMarkovModel(m);
+    EXPECT_EQ(chain.size(), 2u);
+    EXPECT_TRUE(chain.deterministic());
+    const std::vector<char> known = where(chain, m, "b.knows");
+    const std::vector<double> byRound = boundedReachability(chain, known, 30);
+    for (std::size_t t = 0; t <= 30; ++t) EXPECT_NEAR(byRound[t], 1.0 - std::pow(c.p, static_cast<double>(t)), 1e-9) << c.p << " t=" << t;
+    const QuantitativeResult rounds = expectedReward(chain, known, rewardOn(m, "round"));
+    EXPECT_FALSE(rounds.infinite);
+    EXPECT_NEAR(rounds.value, 1.0 / (1.0 - c.p), 1e-9) << rounds.method;
+    EXPECT_NEAR(reachability(chain, known).value, 1.0, 1e-12);
+  }
+}
+
+// The synchronous leader election of Itai and Rodeh as PRISM's case study leader_sync models it:
+// N processes in a ring pick ids in 0..K-1 in one synchronous step, pass them round the ring
+// (a counter c says how far), then all decide (a unique id among them: done) or pick again.
+std::string itaiRodeh(int n, int k) {
+  auto at = [n](int i) { return std::to_string((i % n) + 1); };
+  std::string t = "semo-ir 1;\nvar c : 1.." + std::to_string(n - 1) + " = 1;\n";
+  for (int i = 1; i <= n; ++i) {
+    const std::string s = std::to_string(i);
+    t += "var s" + s + " : 0..3;\nvar u" + s + " : bool;\nvar v" + s + " : 0.." + std::to_string(k - 1) + ";\nvar p" + s + " : 0.." +
+         std::to_string(k - 1) + ";\n";
+  }
+  std::string anyUnique;
+  for (int i = 1; i <= n; ++i) anyUnique += (i > 1 ? " || " : "") + std::string("u") + std::to_string(i);
+  // pick: every combination of ids, each with probability 1/K^N
+  int outcomes = 1;
+  for (int i = 0; i < n; ++i) outcomes *= k;
+  t += "rule pick : ";
+  for (int i = 1; i <= n; ++i) t += (i > 1 ? " && " : "") + std::string("s") + std::to_string(i) + " == 0";
+  t += " ->";
+  for (int o = 0; o < outcomes; ++o) {
+    t += o == 0 ? " " : "\n  + ";
+    t += "1/" + std::to_string(outcomes) + " :";
+    int rest = o;
+    for (int i = 1; i <= n; ++i, rest /= k) {
+      const std::string s = std::to_string(i), id = std::to_string(rest % k);
+      t += (i > 1 ? ", " : " ") + std::string("s") + s + "' = 1, p" + s + "' = " + id + ", v" + s + "' = " + id + ", u" + s + "' = true";
+    }
+  }
+  t += ";\n";
+  // read: process i reads its neighbour's value; the last read moves everyone to deciding
+  const std::string last = "c == " + std::to_string(n - 1);
+  t += "rule read : ";
+  for (int i = 1; i <= n; ++i) t += (i > 1 ? " && " : "") + std::string("s") + std::to_string(i) + " == 1";
+  t += " -> c' = (" + last + " ? c : c + 1)";
+  for (int i = 1; i <= n; ++i) {
+    const std::string s = std::to_string(i), next = at(i);
+    t += ", s" + s + "' = (" + last + " ? 2 : 1)";
+    t += ", u" + s + "' = (u" + s + " ? p" + s + " != v" + next + " : false)";
+    t += ", v" + s + "' = (" + last + " ? 0 : v" + next + ")";
+    t += ", p" + s + "' = (" + last + " ? (u" + s + " ? 0 : p" + s + ") : (u" + s + " ? p" + s + " : 0))";
+  }
+  t += ";\n";
+  std::string deciding;
+  for (int i = 1; i <= n; ++i) deciding += (i > 1 ? " && " : "") + std::string("s") + std::to_string(i) + " == 2";
+  std::string reset;
+  for (int i = 1; i <= n; ++i) {
+    const std::string s = std::to_string(i);
+    reset += ", u" + s + "' = false, v" + s + "' = 0, p" + s + "' = 0";
+  }
+  std::string doneSet, retrySet;
+  for (int i = 1; i <= n; ++i) doneSet += (i > 1 ? ", " : "") + std::string("s") + std::to_string(i) + "' = 3";
+  for (int i = 1; i <= n; ++i) retrySet += (i > 1 ? ", " : "") + std::string("s") + std::to_string(i) + "' = 0";
+  t += "rule done : " + deciding + " && (" + anyUnique + ") -> " + doneSet + reset + ";\n";
+  t += "rule retry : " + deciding + " && !(" + anyUnique + ") -> c' = 1, " + retrySet + reset + ";\n";
+  std::string finished;
+  for (int i = 1; i <= n; ++i) finished += (i > 1 ? " && " : "") + std::string("s") + std::to_string(i) + " == 3";
+  t += "rule loop : " + finished + " -> skip;\n";
+  return t;
+}
+
+TEST(Markov, SynchronousLeaderElectionReproducesPrismsPublishedNumbers) {
+  struct Case {
+    int n, k;
+    std::size_t states;
+    double rounds;
+  };
+  for (const Case& c : {Case{3, 2, 26, 4.0 / 3.0}, Case{4, 4, 812, 32.0 / 27.0}, Case{5, 4, 4244, 256.0 / 225.0}}) {
+    const ir::Model m = parse(itaiRodeh(c.n, c.k));
+    const MarkovModel chain = buildMarkovModel(m);
+    EXPECT_EQ(chain.size(), c.states) << "N=" << c.n << " K=" << c.k;
+    EXPECT_TRUE(chain.deterministic());
+    std::string elected;
+    for (int i = 1; i <= c.n; ++i) elected += (i > 1 ? " && " : "") + std::string("s") + std::to_string(i) + " == 3";
+    const std::vector<char> target = where(chain, m, elected);
+    const QuantitativeResult rounds = expectedReward(chain, target, rewardOn(m, "pick"));
+    EXPECT_NEAR(rounds.value, c.rounds, 1e-9) << rounds.method;
+    EXPECT_NE(rounds.method.find("sparse LU"), std::string::npos);
+    EXPECT_NEAR(reachability(chain, target).value, 1.0, 1e-12);
+  }
+}
+
+// Herman's self-stabilising ring: each process holding a token (its bit equals its left
+// neighbour's) flips a fair coin, the others copy their neighbour, all at once. From three tokens
+// equally spaced, the expected steps to one token are 4 N^2 / 27.
+std::string herman(int n, const std::string& initial) {
+  std::string t = "semo-ir 1;\n";
+  for (int i = 0; i < n; ++i) t += "var x" + std::to_string(i) + " : bool = " + (initial[static_cast<std::size_t>(i)] == '1' ? "true" : "false") + ";\n";
+  const int outcomes = 1 << n;
+  t += "rule step : true ->";
+  for (int o = 0; o < outcomes; ++o) {
+    t += o == 0 ? " " : "\n  + ";
+    t += "1/" + std::to_string(outcomes) + " :";
+    for (int i = 0; i < n; ++i) {
+      const std::string x = "x" + std::to_string(i), left = "x" + std::to_string((i + n - 1) % n);
+      t += (i > 0 ? ", " : " ") + x + "' = (" + x + " == " + left + " ? " + ((o >> i) & 1 ? "true" : "false") + " : " + left + ")";
+    }
+  }
+  return t + ";\n";
+}
+
+TEST(Markov, HermansRingFromThreeEquallySpacedTokensTakesFourNSquaredOver27Steps) {
+  for (const auto& [n, initial] : {std::pair{3, std::string("000")}, std::pair{9, std::string("010010010")}}) {
+    const ir::Model m = parse(herman(n, initial));
+    const MarkovModel chain = buildMarkovModel(m);
+    std::string tokens;
+    for (int i = 0; i < n; ++i) tokens += (i > 0 ? " + " : "") + std::string("(x") + std::to_string(i) + " == x" + std::to_string((i + n - 1) % n) + ")";
+    EXPECT_TRUE(where(chain, m, tokens + " == 3")[0]) << "three tokens at the start";
+    const std::vector<char> stable = where(chain, m, tokens + " == 1");
+    const QuantitativeResult steps = expectedReward(chain, stable, rewardOn(m, "step"));
+    EXPECT_NEAR(steps.value, 4.0 * n * n / 27.0, 1e-6) << steps.method;
+  }
+}
+
+// A scheduler's choice: from x = 0, `gamble` reaches x = 1 or the dead end x = 2 with even odds,
+// `coin` reaches x = 1 or stays, `quit` goes to the dead end.
+TEST(Markov, NondeterministicChoicesGiveTheMinimumAndMaximumOverSchedulers) {
+  const ir::Model m = parse(
+      "semo-ir 1;\nvar x : 0..2 = 0;\n"
+      "rule gamble : x == 0 -> 1/2 : x' = 1 + 1/2 : x' = 2;\n"
+      "rule coin : x == 0 -> 0.5 : x' = 1 + 0.5 : skip;\n"
+      "rule quit : x == 0 -> x' = 2;\n");
+  const MarkovModel chain = buildMarkovModel(m);
+  EXPECT_FALSE(chain.deterministic());
+  const std::vector<char> one = where(chain, m, "x == 1");
+  EXPECT_NEAR(reachability(chain, one, Optimum::Max).value, 1.0, 1e-9);
+  EXPECT_NEAR(reachability(chain, one, Optimum::Min).value, 0.0, 1e-12);
+  const std::vector<double> withinMax = boundedReachability(chain, one, 3, Optimum::Max);
+  EXPECT_NEAR(withinMax[1], 0.5, 1e-12);
+  EXPECT_NEAR(withinMax[3], 0.875, 1e-12);  // coin three times
+  const std::vector<double> steps(m.rules.size(), 1.0);
+  const QuantitativeResult fewest = expectedReward(chain, one, steps, Optimum::Min);
+  EXPECT_NEAR(fewest.value, 2.0, 1e-9) << fewest.method;  // only `coin` reaches x = 1 surely
+  EXPECT_TRUE(expectedReward(chain, one, steps, Optimum::Max).infinite);
+}
+
+TEST(Markov, AStepOutsideARangeOrTooManyStatesIsAnErrorNotAnAnswer) {
+  EXPECT_THROW(buildMarkovModel(parse("semo-ir 1;\nvar x : 0..2 = 0;\nrule up : true -> x' = x + 1;\n")), MarkovError);
+  MarkovLimits small;
+  small.maxStates = 10;
+  EXPECT_THROW(buildMarkovModel(parse("semo-ir 1;\nvar x : 0..100 = 0;\nrule up : x < 100 -> x' = x + 1;\n"), small), MarkovError);
+}
+
+}  // namespace
+}  // namespace semo::checker
