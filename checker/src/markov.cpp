@@ -158,7 +158,7 @@ std::vector<double> solveChain(const MarkovModel& m, const std::vector<char>& un
   lu.compute(a);
   if (lu.info() == Eigen::Success) {
     x = lu.solve(b);
-    method = fmt::format("exact: a Markov chain, linear equations over {} states solved by sparse LU", n);
+    method = fmt::format("exact: a Markov chain, linear equations over {} state{} solved by sparse LU", n, n == 1 ? "" : "s");
   } else {
     Eigen::BiCGSTAB<Eigen::SparseMatrix<double>> iterative;
     iterative.setTolerance(1e-14);
@@ -222,7 +222,7 @@ MarkovModel buildMarkovModel(const ir::Model& model, const MarkovLimits& limits)
     auto [it, fresh] = index.emplace(s, static_cast<std::uint32_t>(m.states.size()));
     if (fresh) {
       if (m.states.size() >= limits.maxStates) {
-        throw MarkovError(fmt::format("more than {} reachable states (the limit of the quantitative engine)", limits.maxStates));
+        throw MarkovError(fmt::format("more than {} reachable states (the limit of the quantitative engine)", limits.maxStates), true);
       }
       m.states.push_back(std::move(s));
     }

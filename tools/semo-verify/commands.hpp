@@ -117,6 +117,15 @@ struct SimulateOptions {
   std::optional<std::string> generated;  // run the tables of a generated project's simulation module
 };
 
+struct AnalyzeOptions {
+  ModelInput model;
+  std::size_t rounds = 20;              // horizon of P(within t), in steps of the model
+  std::optional<std::string> reward;    // a glob of rule names whose steps the expectation counts
+  std::size_t maxStates = 5'000'000;
+  bool json = false;
+  std::optional<std::string> svg;
+};
+
 struct ReplayOptions {
   std::string trace;                 // a `check --json` output, or one counterexample object
   ModelInput model;                  // empty fields: as the trace file records them
@@ -190,6 +199,7 @@ int runExport(const ExportOptions& options);
 int runLint(const LintOptions& options);
 int runSimulate(const SimulateOptions& options);
 int runReplay(const ReplayOptions& options);
+int runAnalyze(const AnalyzeOptions& options);
 int runEmit(const EmitOptions& options);
 int runCertify(const CertifyOptions& options);
 

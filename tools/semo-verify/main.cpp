@@ -171,6 +171,20 @@ int main(int argc, char** argv) {
   replayCmd->add_flag("!--no-fingerprint", replay.checkFingerprint,
                       "Replay even when the trace's model fingerprint differs (the mission read through another path)");
 
+  semo::cli::AnalyzeOptions analyze;
+  CLI::App* analyzeCmd = app.add_subcommand(
+      "analyze", "How likely and how soon: each `eventually {p}` property of the model, on its reachable states read as a Markov decision "
+                 "process (specs/quantitative.md): P(within t steps), P(eventually), the expected steps (or rewards)");
+  addModelOptions(analyzeCmd, analyze.model);
+  analyzeCmd->add_option("--rounds", analyze.rounds, "Horizon of P(within t), in steps of the model (default 20)")->check(CLI::Range(1, 100000));
+  analyzeCmd->add_option("--reward", analyze.reward,
+                         "Count only the steps of the rules whose names match this glob (e.g. pick: rounds of a synchronous model); "
+                         "default: every step");
+  analyzeCmd->add_option("--max-states", analyze.maxStates, "Give up beyond this many reachable states (exit 3; default 5000000)")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{100'000'000}));
+  analyzeCmd->add_flag("--json", analyze.json, "Print the results as JSON");
+  analyzeCmd->add_option("--svg", analyze.svg, "Write a chart of P(within t) against t");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -188,6 +202,7 @@ int main(int argc, char** argv) {
   if (*checkCmd) return semo::cli::runCheck(check);
   if (*exportCmd) return semo::cli::runExport(exportOptions);
   if (*replayCmd) return semo::cli::runReplay(replay);
+  if (*analyzeCmd) return semo::cli::runAnalyze(analyze);
   if (*simulateCmd) {
     if (!seeds.empty()) {
       const auto dots = seeds.find("..");

@@ -35,9 +35,10 @@ struct MarkovLimits {
   std::size_t maxStates = 5'000'000;
 };
 
-// A model too large for the limits, or a step that leaves a declared range.
+// A model too large for the limits (limitReached), or a step that leaves a declared range.
 struct MarkovError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+  explicit MarkovError(const std::string& what, bool limit = false) : std::runtime_error(what), limitReached(limit) {}
+  bool limitReached = false;
 };
 
 // The reachable states and their actions, breadth-first from the initial state.

@@ -1,0 +1,150 @@
+// `analyze`: how likely and how soon each `eventually {p}` property of a model is met, on the IR
+// read as a Markov decision process (checker/markov.hpp, specs/quantitative.md).
+#include <fnmatch.h>
+
+#include <cmath>
+
+#include <iostream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "probability_chart.hpp"
+#include "semo/checker/markov.hpp"
+#include "semo/semantics/ir_text.hpp"
+
+namespace semo::cli {
+namespace {
+
+using checker::Optimum;
+
+struct Answer {
+  std::string name, target;
+  checker::QuantitativeResult eventually[2], expected[2];  // [min, max]
+  std::vector<double> within[2];
+};
+
+std::string number(double v) { return std::isinf(v) ? "infinite" : fmt::format("{:.9g}", v); }
+
+std::string range(const checker::QuantitativeResult (&r)[2], bool chain) {
+  if (chain || r[0].value == r[1].value) return number(r[0].value);
+  return "min " + number(r[0].value) + ", max " + number(r[1].value);
+}
+
+nlohmann::json resultJson(const checker::QuantitativeResult (&r)[2]) {
+  auto one = [](const checker::QuantitativeResult& q) { return q.infinite ? nlohmann::json("infinite") : nlohmann::json(q.value); };
+  return {{"min", one(r[0])}, {"max", one(r[1])}, {"method", r[0].method}};
+}
+
+}  // namespace
+
+int runAnalyze(const AnalyzeOptions& options) {
+  std::unique_ptr<BuiltModel> built = buildModel(options.model);
+  if (!built) return kBadInput;
+  const ir::Model& model = *built->model;
+  const std::string& input = options.model.input;
+  std::vector<std::size_t> asked;
+  for (std::size_t p = 0; p < model.properties.size(); ++p) {
+    const ir::Ltl& f = model.properties[p].formula;
+    if (f.kind == ir::Ltl::Kind::Eventually && f.args.size() == 1 && f.args[0].kind == ir::Ltl::Kind::Atom) asked.push_back(p);
+  }
+  if (asked.empty()) {
+    std::cerr << "semo-verify: error: " << input << " has no property of the form `eventually {p}`: nothing to measure\n";
+    return kBadInput;
+  }
+  std::vector<double> reward(model.rules.size(), 1.0);
+  std::string counting = "steps of every rule";
+  if (options.reward) {
+    std::size_t matched = 0;
+    for (std::size_t r = 0; r < model.rules.size(); ++r) {
+      reward[r] = fnmatch(options.reward->c_str(), model.rules[r].name.c_str(), 0) == 0 ? 1.0 : 0.0;
+      matched += reward[r] > 0 ? 1 : 0;
+    }
+    if (matched == 0) {
+      std::cerr << "semo-verify: error: --reward '" << *options.reward << "' names no rule of " << input << "\n";
+      return kBadInput;
+    }
+    counting = fmt::format("steps of the {} rule{} matching '{}'", matched, matched == 1 ? "" : "s", *options.reward);
+  }
+  std::vector<Output> outputs;
+  if (options.svg) outputs.push_back({"--svg", *options.svg});
+  std::vector<std::string> inputs = filesRead(built->sources);
+  inputs.insert(inputs.end(), {input, options.model.strategy.value_or(""), options.model.robotsDir.value_or("")});
+  if (!outputsSpareInputs(outputs, inputs)) return kBadInput;
+
+  checker::MarkovModel chain;
+  try {
+    chain = checker::buildMarkovModel(model, {.maxStates = options.maxStates});
+  } catch (const checker::MarkovError& e) {
+    std::cerr << "semo-verify: " << (e.limitReached ? "limit" : "error") << ": " << e.what() << "\n";
+    return e.limitReached ? kLimit : kBadInput;
+  }
+  const bool deterministic = chain.deterministic();
+  std::vector<Answer> answers;
+  try {
+    for (std::size_t p : asked) {
+      Answer a;
+      a.name = model.properties[p].name;
+      a.target = ir::toText(model, model.properties[p].formula.args[0].atom);
+      const std::vector<char> target = checker::statesWhere(chain, model, model.properties[p].formula.args[0].atom);
+      for (int k = 0; k < 2; ++k) {
+        const Optimum o = k == 0 ? Optimum::Min : Optimum::Max;
+        a.eventually[k] = checker::reachability(chain, target, o);
+        a.expected[k] = checker::expectedReward(chain, target, reward, o);
+        a.within[k] = checker::boundedReachability(chain, target, options.rounds, o);
+      }
+      answers.push_back(std::move(a));
+    }
+  } catch (const checker::MarkovError& e) {
+    std::cerr << "semo-verify: error: " << e.what() << "\n";
+    return kBadInput;
+  }
+
+  const std::string kind = deterministic ? "a Markov chain (one rule enabled at most)" : "a Markov decision process: min and max over schedules";
+  if (options.json) {
+    nlohmann::json out{{"schemaVersion", 1},          {"tool", std::string("semo-verify ") + kToolVersion},
+                       {"model", input},              {"states", chain.size()},
+                       {"actions", chain.actions()}, {"deterministic", deterministic},
+                       {"reward", counting},          {"properties", nlohmann::json::array()}};
+    for (const Answer& a : answers) {
+      out["properties"].push_back({{"name", a.name},
+                                   {"target", a.target},
+                                   {"eventually", resultJson(a.eventually)},
+                                   {"expected", resultJson(a.expected)},
+                                   {"within", {{"min", a.within[0]}, {"max", a.within[1]}}}});
+    }
+    std::cout << out.dump(2) << "\n";
+  } else {
+    std::cout << "model:       " << input << " (" << model.variables.size() << " variables, " << model.rules.size() << " rules)\n";
+    std::cout << "markov:      " << chain.size() << " states, " << chain.actions() << (chain.actions() == 1 ? " action: " : " actions: ") << kind << "\n";
+    std::cout << "counting:    " << counting << "\n";
+    for (const Answer& a : answers) {
+      std::cout << "property " << a.name << ": eventually {" << a.target << "}\n";
+      std::cout << "  P(eventually):  " << range(a.eventually, deterministic) << "  (" << a.eventually[0].method << ")\n";
+      std::cout << "  expected:       " << range(a.expected, deterministic) << "  (" << a.expected[0].method << ")\n";
+      std::cout << "  P(within t steps):";
+      for (std::size_t t = 1; t <= options.rounds; ++t) {
+        if (t > 1 && (t - 1) % 5 == 0) std::cout << "\n                    ";
+        const double lo = a.within[0][t], hi = a.within[1][t];
+        std::cout << fmt::format("  {:>3}: {}", t, deterministic || lo == hi ? fmt::format("{:.6f}", hi) : fmt::format("{:.6f}..{:.6f}", lo, hi));
+      }
+      std::cout << "\n";
+    }
+  }
+  if (options.svg) {
+    std::vector<ChartSeries> series;
+    for (const Answer& a : answers) {
+      if (!deterministic) series.push_back({a.name + " (min)", a.within[0], true});
+      series.push_back({a.name + (deterministic ? "" : " (max)"), a.within[1], false});
+    }
+    const std::string svg = probabilityChartSvg(series, "P(reached within t steps) - " + input, "t (steps of the model)");
+    if (!writeAtomically(*options.svg, svg)) {
+      std::cerr << "semo-verify: error: cannot write '" << *options.svg << "'\n";
+      return kBadInput;
+    }
+  }
+  return kOk;
+}
+
+}  // namespace semo::cli
