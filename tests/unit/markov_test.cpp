@@ -6,6 +6,7 @@
 #include <string>
 
 #include "semo/checker/markov.hpp"
+#include "semo/checker/round_models.hpp"
 #include "semo/frontend/diagnostics.hpp"
 #include "semo/semantics/ir_text.hpp"
 
@@ -199,6 +200,32 @@ TEST(Markov, NondeterministicChoicesGiveTheMinimumAndMaximumOverSchedulers) {
   const QuantitativeResult fewest = expectedReward(chain, one, steps, Optimum::Min);
   EXPECT_NEAR(fewest.value, 2.0, 1e-9) << fewest.method;  // only `coin` reaches x = 1 surely
   EXPECT_TRUE(expectedReward(chain, one, steps, Optimum::Max).infinite);
+}
+
+// Knowledge spread in the runtime's gossip rounds. When the last robot in the team's order finds
+// the fact, its first round is everyone's broadcast at once: three robots, loss 1/5 per message,
+// P(all know within 1 round) = 0.8^2, within 2 rounds 0.9728, expected rounds 25/18.
+TEST(Markov, GossipRoundsMatchTheClosedFormsOfOneFactInThreeRobots) {
+  SpreadAnswer a = analyzeSpread({.robots = 3, .firstKnower = 2, .lossPerCopy = 0.2, .retransmissions = 0}, 4);
+  EXPECT_NEAR(a.withinRounds[0], 0.0, 1e-12);
+  EXPECT_NEAR(a.withinRounds[1], 0.64, 1e-9);
+  EXPECT_NEAR(a.withinRounds[2], 0.9728, 1e-9);
+  EXPECT_NEAR(a.expectedRounds.value, 25.0 / 18.0, 1e-9) << a.expectedRounds.method;
+  // Three copies more per message: a message is lost only if all four are (0.2^4).
+  const double lost = std::pow(0.2, 4), heard = 1 - lost;
+  const double both = heard * heard, none = lost * lost, one = 2 * heard * lost;
+  const double lastOne = 1 / (1 - lost * lost);  // the third robot hears one of two senders
+  a = analyzeSpread({.robots = 3, .firstKnower = 2, .lossPerCopy = 0.2, .retransmissions = 3}, 2);
+  EXPECT_NEAR(a.withinRounds[1], both, 1e-9);
+  EXPECT_NEAR(a.expectedRounds.value, (1 + one * lastOne) / (1 - none), 1e-9);
+  EXPECT_NEAR(a.expectedRounds.value, 1.003197, 1e-6);
+  // The first robot in order: whichever of the other two learns from it passes it on to the third
+  // later in the same round (robot 1 to robot 2, or robot 2 to robot 1).
+  a = analyzeSpread({.robots = 3, .firstKnower = 0, .lossPerCopy = 0.2, .retransmissions = 0}, 1);
+  EXPECT_NEAR(a.withinRounds[1], 0.8 * 0.8 + 2 * (0.8 * 0.2) * 0.8, 1e-9);
+  // No loss: one round; certain loss: never.
+  EXPECT_NEAR(analyzeSpread({.robots = 5, .firstKnower = 1, .lossPerCopy = 0, .retransmissions = 0}, 1).withinRounds[1], 1.0, 1e-12);
+  EXPECT_TRUE(analyzeSpread({.robots = 3, .firstKnower = 1, .lossPerCopy = 1, .retransmissions = 2}, 1).expectedRounds.infinite);
 }
 
 TEST(Markov, AStepOutsideARangeOrTooManyStatesIsAnErrorNotAnAnswer) {

@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "commands.hpp"
+#include "analyze_internal.hpp"
 #include "probability_chart.hpp"
 #include "semo/checker/markov.hpp"
 #include "semo/semantics/ir_text.hpp"
@@ -42,6 +42,18 @@ nlohmann::json resultJson(const checker::QuantitativeResult (&r)[2]) {
 int runAnalyze(const AnalyzeOptions& options) {
   std::unique_ptr<BuiltModel> built = buildModel(options.model);
   if (!built) return kBadInput;
+  if (built->mission) {
+    std::vector<Output> outputs;
+    if (options.svg) outputs.push_back({"--svg", *options.svg});
+    std::vector<std::string> inputs = filesRead(built->sources);
+    inputs.insert(inputs.end(), {options.model.input, options.model.strategy.value_or(""), options.model.robotsDir.value_or("")});
+    if (!outputsSpareInputs(outputs, inputs)) return kBadInput;
+    return analyzeSpreads(options, *built);
+  }
+  if (options.lossProb) {
+    std::cerr << "semo-verify: error: --loss-prob applies to a mission; an IR model states its probabilities in its rules\n";
+    return kBadInput;
+  }
   const ir::Model& model = *built->model;
   const std::string& input = options.model.input;
   std::vector<std::size_t> asked;
@@ -126,8 +138,8 @@ int runAnalyze(const AnalyzeOptions& options) {
       std::cout << "  P(within t steps):";
       for (std::size_t t = 1; t <= options.rounds; ++t) {
         if (t > 1 && (t - 1) % 5 == 0) std::cout << "\n                    ";
-        const double lo = a.within[0][t], hi = a.within[1][t];
-        std::cout << fmt::format("  {:>3}: {}", t, deterministic || lo == hi ? fmt::format("{:.6f}", hi) : fmt::format("{:.6f}..{:.6f}", lo, hi));
+        const std::string lo = fmt::format("{:.6f}", a.within[0][t]), hi = fmt::format("{:.6f}", a.within[1][t]);
+        std::cout << fmt::format("  {:>3}: {}", t, deterministic || lo == hi ? hi : lo + ".." + hi);
       }
       std::cout << "\n";
     }

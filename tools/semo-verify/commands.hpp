@@ -124,6 +124,7 @@ struct AnalyzeOptions {
   std::size_t maxStates = 5'000'000;
   bool json = false;
   std::optional<std::string> svg;
+  std::optional<double> lossProb;       // a mission: the probability that one copy of a message is lost
 };
 
 struct ReplayOptions {

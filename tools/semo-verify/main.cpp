@@ -182,6 +182,10 @@ int main(int argc, char** argv) {
                          "default: every step");
   analyzeCmd->add_option("--max-states", analyze.maxStates, "Give up beyond this many reachable states (exit 3; default 5000000)")
       ->check(CLI::Range(std::size_t{1}, std::size_t{100'000'000}));
+  analyzeCmd->add_option("--loss-prob", analyze.lossProb,
+                         "A mission: the probability that one copy of a message is lost; measures each knowledge item's spread in "
+                         "gossip rounds")
+      ->check(CLI::Range(0.0, 1.0));
   analyzeCmd->add_flag("--json", analyze.json, "Print the results as JSON");
   analyzeCmd->add_option("--svg", analyze.svg, "Write a chart of P(within t) against t");
 

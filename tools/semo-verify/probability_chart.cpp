@@ -7,7 +7,7 @@
 namespace semo::cli {
 namespace {
 
-constexpr double kWidth = 720, kHeight = 420, kLeft = 70, kRight = 200, kTop = 40, kBottom = 50;
+constexpr double kPlotWidth = 450, kHeight = 420, kLeft = 70, kTop = 40, kBottom = 50;
 constexpr const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b", "#e377c2"};
 
 std::string escaped(const std::string& text) {
@@ -27,7 +27,11 @@ std::string escaped(const std::string& text) {
 std::string probabilityChartSvg(const std::vector<ChartSeries>& series, const std::string& title, const std::string& unit) {
   std::size_t horizon = 1;
   for (const ChartSeries& s : series) horizon = std::max(horizon, s.values.empty() ? std::size_t{1} : s.values.size() - 1);
-  const double plotWidth = kWidth - kLeft - kRight, plotHeight = kHeight - kTop - kBottom;
+  // The legend's column is as wide as its longest name (about 7 px a character at 12 px).
+  std::size_t longest = 0;
+  for (const ChartSeries& s : series) longest = std::max(longest, s.name.size());
+  const double kRight = 60 + 7.0 * static_cast<double>(longest), kWidth = kLeft + kPlotWidth + kRight;
+  const double plotWidth = kPlotWidth, plotHeight = kHeight - kTop - kBottom;
   auto x = [&](std::size_t t) { return kLeft + plotWidth * static_cast<double>(t) / static_cast<double>(horizon); };
   auto y = [&](double p) { return kTop + plotHeight * (1.0 - std::clamp(p, 0.0, 1.0)); };
   std::string out = fmt::format(

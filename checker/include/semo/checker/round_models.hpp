@@ -1,0 +1,37 @@
+#pragma once
+// Round models: how the runtime spreads knowledge, written as IR for the quantitative engine
+// (markov.hpp). The translation's IR lets a robot learn a fact at any time (which is what the
+// qualitative properties need); the runtime gossips in rounds, one every dissemination period, and
+// those rounds are what "how many rounds until every robot knows" counts. specs/quantitative.md.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "semo/checker/markov.hpp"
+#include "semo/semantics/ir.hpp"
+
+namespace semo::checker {
+
+struct SpreadParameters {
+  std::size_t robots = 2;         // the robots working in the group service, in the team's order
+  std::size_t firstKnower = 0;    // which of them holds the fact at the start
+  double lossPerCopy = 0;         // probability that one copy of one message is lost
+  std::int64_t retransmissions = 0;  // extra copies of each message (lost only if all are)
+};
+
+// One fact spreading as Team::gossip spreads it: each round, the robots in the team's order, each
+// that holds the fact sends it to each other robot in order, received unless every copy is lost;
+// a robot that learnt it earlier in the round sends it later in the same round. Variables
+// `knows[i]` and `phase` (0: a round begins, the rule `round`; then one phase per message). No
+// robot crashes and every robot stays in the service.
+ir::Model knowledgeSpreadModel(const SpreadParameters& p);
+
+struct SpreadAnswer {
+  std::size_t states = 0;
+  std::vector<double> withinRounds;  // P(every robot knows within t rounds), t = 0 .. horizon
+  QuantitativeResult expectedRounds;
+};
+
+SpreadAnswer analyzeSpread(const SpreadParameters& p, std::size_t horizonRounds);
+
+}  // namespace semo::checker
