@@ -2,6 +2,11 @@
 // numbers say, renders, is the same bytes on every run, and never replaces an input.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <map>
+
+#include <nlohmann/json.hpp>
+
 #include "cli_run.hpp"
 
 namespace semo::e2e {
@@ -54,6 +59,79 @@ TEST(Analyze, TheChartNeverReplacesTheModel) {
   EXPECT_EQ(r.exit, 2);
   EXPECT_EQ(slurp(model), before);
   EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+// The computed distribution of the swarm's knowledge spread against the simulator's: 1,000 seeded
+// runs of swarm3 with each copy of a message lost with probability 0.8 (three extra copies: a
+// message is lost with 0.8^4 = 0.41), the rounds from the first gossip round after the obstacle is
+// found to the last robot's learning, read from each run's trace. The empirical distribution must
+// lie within the Dvoretzky-Kiefer-Wolfowitz band of the computed one (95 %: 0.043 for 1,000 runs),
+// and a wrong model (loss 0.5) must fall outside it.
+std::vector<double> computedSpread(const fs::path& dir, const std::string& loss, const std::string& finder) {
+  const fs::path json = dir / ("analyze_" + loss + ".json");
+  CliRun r = verify("analyze specs/examples/swarm/swarm3.semo -s specs/examples/swarm/strategy.xml --loss-prob " + loss +
+                        " --rounds 12 --json > '" + json.string() + "'",
+                    dir);
+  EXPECT_EQ(r.exit, 0) << r.err;
+  const nlohmann::json out = nlohmann::json::parse(slurp(json));
+  for (const nlohmann::json& f : out.at("knowledge").at(0).at("byFinder")) {
+    if (f.at("robot") == finder) return f.at("withinRounds").get<std::vector<double>>();
+  }
+  ADD_FAILURE() << "no finder " << finder;
+  return {};
+}
+
+TEST(Analyze, TheSwarmsSpreadAgreesWithTheSimulatorWithinTheDkwBand) {
+  const fs::path dir = workDir("analyze_dkw");
+  constexpr int kRuns = 1000;
+  CliRun sim = verify("simulate specs/examples/swarm/swarm3.semo -s specs/examples/swarm/strategy.xml --loss 0.8 --seeds 1.." +
+                          std::to_string(kRuns) + " --no-dataflow --trace '" + (dir / "t_{seed}.json").string() + "'",
+                      dir);
+  ASSERT_EQ(sim.exit, 0) << sim.err;
+  std::map<std::string, int> finders;
+  std::vector<int> rounds;
+  int foundTwice = 0;
+  for (int seed = 1; seed <= kRuns; ++seed) {
+    const fs::path trace = dir / ("t_" + std::to_string(seed) + ".json");
+    const nlohmann::json events = nlohmann::json::parse(slurp(trace)).at("events");
+    fs::remove(trace);
+    std::string finder;
+    double found = -1, firstRound = -1, last = -1;
+    std::map<std::string, double> knows;
+    for (const nlohmann::json& e : events) {
+      auto text = [&e](const char* key) { return e.contains(key) && e[key].is_string() ? e[key].get<std::string>() : std::string(); };
+      const std::string kind = text("kind"), label = text("label"), robot = text("robot");
+      const double t = e.at("t");
+      const bool finds = kind == "fact" && label.rfind("finds obstacle", 0) == 0;
+      const bool learns = kind == "fact" && label.rfind("learns obstacle", 0) == 0;
+      const bool dropped = kind == "drop" && label.find("obstacle gossip lost") != std::string::npos;
+      if (finds && finder.empty()) finder = robot, found = t, knows[robot] = t;
+      else if (finds && knows.count(robot) == 0) ++foundTwice, knows[robot] = t;
+      if ((learns || dropped) && found >= 0 && t > found && firstRound < 0) firstRound = t;
+      if (learns && knows.count(robot) == 0) knows[robot] = t, last = t;
+    }
+    ASSERT_FALSE(finder.empty()) << "seed " << seed << ": nobody found the obstacle";
+    ASSERT_EQ(knows.size(), 3u) << "seed " << seed << ": not every robot learnt of it";
+    ++finders[finder];
+    rounds.push_back(static_cast<int>(std::lround((last - firstRound) / 0.2)) + 1);  // gossip every 200 ms
+  }
+  ASSERT_EQ(finders.size(), 1u) << "the same robot finds the obstacle in every run";
+  EXPECT_EQ(foundTwice, 0) << "a robot found it itself before it was told";
+  const double band = std::sqrt(std::log(2 / 0.05) / (2.0 * kRuns));
+  auto distance = [&](const std::vector<double>& cdf) {
+    double worst = 0;
+    for (std::size_t t = 1; t < cdf.size(); ++t) {
+      const double measured = static_cast<double>(std::count_if(rounds.begin(), rounds.end(), [t](int r) { return r <= static_cast<int>(t); })) / kRuns;
+      worst = std::max(worst, std::fabs(measured - cdf[t]));
+    }
+    return worst;
+  };
+  const std::string robot = finders.begin()->first;
+  const double right = distance(computedSpread(dir, "0.8", robot));
+  EXPECT_LT(right, band) << "the simulator's spread is not the computed one";
+  const double wrong = distance(computedSpread(dir, "0.5", robot));
+  EXPECT_GT(wrong, band) << "the comparison cannot tell loss 0.8 from 0.5";
+  std::cout << "DKW band " << band << ": loss 0.8 at " << right << ", loss 0.5 at " << wrong << "\n";
 }
 
 }  // namespace

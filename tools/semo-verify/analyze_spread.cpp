@@ -13,6 +13,51 @@
 
 namespace semo::cli {
 
+namespace {
+
+struct Finder {
+  std::string robot;
+  std::vector<double> within;
+  double expected = 0;
+};
+struct Item {
+  std::string name;
+  std::size_t robots = 0;
+  std::vector<Finder> finders;
+  std::int64_t periodMillis = 0, retransmissions = 0;
+  std::vector<double> within[2];  // min, max over which robot finds the fact
+  double expected[2] = {0, 0};
+  std::string method;
+  std::size_t states = 0;
+};
+
+// The spread of one knowledge item among `members` (in the team's order), from each of them as the
+// robot that finds the fact, and the least and greatest of those.
+Item measure(std::string name, const std::vector<std::string>& members, const strategy::Dissemination& d, const AnalyzeOptions& options) {
+  Item item{std::move(name), members.size(), {}, d.periodMillis, d.retransmissions, {}, {}, {}, 0};
+  for (std::size_t first = 0; first < members.size(); ++first) {
+    const checker::SpreadAnswer a = checker::analyzeSpread({members.size(), first, *options.lossProb, d.retransmissions}, options.rounds);
+    item.states = std::max(item.states, a.states);
+    item.method = a.expectedRounds.method;
+    const double e = a.expectedRounds.infinite ? std::numeric_limits<double>::infinity() : a.expectedRounds.value;
+    item.finders.push_back({members[first], a.withinRounds, e});
+    if (first == 0) {
+      item.within[0] = item.within[1] = a.withinRounds;
+      item.expected[0] = item.expected[1] = e;
+      continue;
+    }
+    item.expected[0] = std::min(item.expected[0], e);
+    item.expected[1] = std::max(item.expected[1], e);
+    for (std::size_t t = 0; t < a.withinRounds.size(); ++t) {
+      item.within[0][t] = std::min(item.within[0][t], a.withinRounds[t]);
+      item.within[1][t] = std::max(item.within[1][t], a.withinRounds[t]);
+    }
+  }
+  return item;
+}
+
+}  // namespace
+
 int analyzeSpreads(const AnalyzeOptions& options, const BuiltModel& built) {
   const model::MissionModel& mission = *built.mission;
   if (!options.lossProb) {
@@ -20,43 +65,19 @@ int analyzeSpreads(const AnalyzeOptions& options, const BuiltModel& built) {
                  "knowledge spread is measured in gossip rounds under that loss\n";
     return kBadInput;
   }
-  struct Item {
-    std::string name;
-    std::size_t robots = 0;
-    std::int64_t periodMillis = 0, retransmissions = 0;
-    std::vector<double> within[2];  // min, max over which robot finds the fact
-    double expected[2] = {0, 0};
-    std::string method;
-    std::size_t states = 0;
-  };
   std::vector<Item> items;
   try {
     for (const strategy::Service& service : mission.strategy.services) {
       if (service.kind != strategy::Service::Kind::Group || !service.dissemination || service.dissemination->via != "broadcast") continue;
-      std::size_t robots = 0;
-      for (const model::Robot& r : mission.robots) robots += service.implementationFor(r.type) != nullptr ? 1 : 0;
-      if (robots < 2) continue;
-      for (const strategy::Knowledge& k : service.knowledge) {
-        Item item{service.name + "." + k.name, robots, service.dissemination->periodMillis, service.dissemination->retransmissions, {}, {}, {}, 0};
-        for (std::size_t first = 0; first < robots; ++first) {
-          const checker::SpreadAnswer a =
-              checker::analyzeSpread({robots, first, *options.lossProb, service.dissemination->retransmissions}, options.rounds);
-          item.states = std::max(item.states, a.states);
-          item.method = a.expectedRounds.method;
-          const double e = a.expectedRounds.infinite ? std::numeric_limits<double>::infinity() : a.expectedRounds.value;
-          if (first == 0) {
-            item.within[0] = item.within[1] = a.withinRounds;
-            item.expected[0] = item.expected[1] = e;
-            continue;
-          }
-          item.expected[0] = std::min(item.expected[0], e);
-          item.expected[1] = std::max(item.expected[1], e);
-          for (std::size_t t = 0; t < a.withinRounds.size(); ++t) {
-            item.within[0][t] = std::min(item.within[0][t], a.withinRounds[t]);
-            item.within[1][t] = std::max(item.within[1][t], a.withinRounds[t]);
-          }
+      for (const model::Team& team : mission.teams) {  // the runtime gossips within a team
+        std::vector<std::string> members;
+        for (model::Index r : team.robots) {
+          if (service.implementationFor(mission.robots[r].type) != nullptr) members.push_back(mission.robots[r].name);
         }
-        items.push_back(std::move(item));
+        if (members.size() < 2) continue;
+        for (const strategy::Knowledge& k : service.knowledge) {
+          items.push_back(measure(team.name + ": " + service.name + "." + k.name, members, *service.dissemination, options));
+        }
       }
     }
   } catch (const checker::MarkovError& e) {
@@ -78,7 +99,11 @@ int analyzeSpreads(const AnalyzeOptions& options, const BuiltModel& built) {
       out["knowledge"].push_back({{"name", i.name}, {"robots", i.robots}, {"periodMillis", i.periodMillis},
                                   {"retransmissions", i.retransmissions}, {"states", i.states},
                                   {"expectedRounds", {{"min", value(i.expected[0])}, {"max", value(i.expected[1])}}},
-                                  {"withinRounds", {{"min", i.within[0]}, {"max", i.within[1]}}}, {"method", i.method}});
+                                  {"withinRounds", {{"min", i.within[0]}, {"max", i.within[1]}}}, {"method", i.method},
+                                  {"byFinder", nlohmann::json::array()}});
+      for (const Finder& f : i.finders) {
+        out["knowledge"].back()["byFinder"].push_back({{"robot", f.robot}, {"expectedRounds", value(f.expected)}, {"withinRounds", f.within}});
+      }
     }
     std::cout << out.dump(2) << "\n";
   } else {
