@@ -69,4 +69,26 @@ SpreadAnswer analyzeSpread(const SpreadParameters& p, std::size_t horizonRounds)
   return out;
 }
 
+ir::Model lossRunModel(std::size_t length, double loss) {
+  ir::Model m;
+  const auto top = static_cast<std::int32_t>(length);
+  m.variables.push_back({"run", 0, top, 0, false, ir::kNoRobot, {}});
+  std::vector<ir::Branch> period;
+  if (loss > 0) period.push_back({loss, {{0, Expr::binary(Op::Add, Expr::var(0), Expr::constant(1))}}});
+  if (loss < 1) period.push_back({1 - loss, {{0, Expr::constant(0)}}});
+  m.rules.push_back(rule("period", Expr::binary(Op::Lt, Expr::var(0), Expr::constant(top)), std::move(period)));
+  return m;
+}
+
+LossRunAnswer analyzeLossRun(std::size_t length, double loss, std::size_t horizonPeriods) {
+  const ir::Model model = lossRunModel(length, loss);
+  const MarkovModel chain = buildMarkovModel(model);
+  std::vector<char> burst(chain.size());
+  for (std::size_t s = 0; s < chain.size(); ++s) burst[s] = chain.states[s][0] == static_cast<std::int32_t>(length) ? 1 : 0;
+  LossRunAnswer out;
+  out.withinPeriods = boundedReachability(chain, burst, horizonPeriods);
+  out.expectedPeriods = expectedReward(chain, burst, {1.0});
+  return out;
+}
+
 }  // namespace semo::checker

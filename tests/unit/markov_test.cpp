@@ -228,6 +228,20 @@ TEST(Markov, GossipRoundsMatchTheClosedFormsOfOneFactInThreeRobots) {
   EXPECT_TRUE(analyzeSpread({.robots = 3, .firstKnower = 1, .lossPerCopy = 1, .retransmissions = 2}, 1).expectedRounds.infinite);
 }
 
+// k heartbeats lost in a row, each with probability p: expected periods (1 - p^k) / ((1 - p) p^k),
+// 780 for k = 4 and p = 0.2 (scouting's light watch: a takeover after 4 silent periods of 500 ms),
+// and a 14 % chance of such a run within 60 s (120 periods).
+TEST(Markov, LossesInARowTakeTheClosedFormTimeAndHaveTheirChanceWithinAMinute) {
+  const LossRunAnswer a = analyzeLossRun(4, 0.2, 120);
+  EXPECT_NEAR(a.expectedPeriods.value, (1 - std::pow(0.2, 4)) / (0.8 * std::pow(0.2, 4)), 1e-6) << a.expectedPeriods.method;
+  EXPECT_NEAR(a.expectedPeriods.value, 780.0, 1e-6);
+  EXPECT_NEAR(a.withinPeriods[4], std::pow(0.2, 4), 1e-12);
+  EXPECT_NEAR(a.withinPeriods[5], std::pow(0.2, 4) + 0.8 * std::pow(0.2, 4), 1e-12);  // or lost after one heard
+  EXPECT_NEAR(a.withinPeriods[120], 0.1401, 5e-5);
+  EXPECT_TRUE(analyzeLossRun(2, 0.0, 10).expectedPeriods.infinite);
+  EXPECT_NEAR(analyzeLossRun(2, 1.0, 10).withinPeriods[2], 1.0, 1e-12);
+}
+
 TEST(Markov, AStepOutsideARangeOrTooManyStatesIsAnErrorNotAnAnswer) {
   EXPECT_THROW(buildMarkovModel(parse("semo-ir 1;\nvar x : 0..2 = 0;\nrule up : true -> x' = x + 1;\n")), MarkovError);
   MarkovLimits small;

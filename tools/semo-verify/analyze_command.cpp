@@ -48,7 +48,7 @@ int runAnalyze(const AnalyzeOptions& options) {
     std::vector<std::string> inputs = filesRead(built->sources);
     inputs.insert(inputs.end(), {options.model.input, options.model.strategy.value_or(""), options.model.robotsDir.value_or("")});
     if (!outputsSpareInputs(outputs, inputs)) return kBadInput;
-    return analyzeSpreads(options, *built);
+    return analyzeMission(options, *built);
   }
   if (options.lossProb) {
     std::cerr << "semo-verify: error: --loss-prob applies to a mission; an IR model states its probabilities in its rules\n";

@@ -1,10 +1,10 @@
 #pragma once
 // The two halves of `analyze`: an IR model's `eventually` properties (analyze_command.cpp) and a
-// mission's knowledge spread in gossip rounds (analyze_spread.cpp).
+// mission's knowledge spread in gossip rounds and its heartbeats (analyze_mission.cpp).
 #include "commands.hpp"
 
 namespace semo::cli {
 
-int analyzeSpreads(const AnalyzeOptions& options, const BuiltModel& built);
+int analyzeMission(const AnalyzeOptions& options, const BuiltModel& built);
 
 }  // namespace semo::cli

@@ -125,6 +125,7 @@ struct AnalyzeOptions {
   bool json = false;
   std::optional<std::string> svg;
   std::optional<double> lossProb;       // a mission: the probability that one copy of a message is lost
+  double seconds = 60;                  // a mission: the horizon of the heartbeat questions
 };
 
 struct ReplayOptions {

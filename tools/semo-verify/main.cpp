@@ -186,6 +186,14 @@ int main(int argc, char** argv) {
                          "A mission: the probability that one copy of a message is lost; measures each knowledge item's spread in "
                          "gossip rounds")
       ->check(CLI::Range(0.0, 1.0));
+  analyzeCmd->add_option_function<std::string>(
+      "--time",
+      [&analyze](const std::string& text) {
+        const std::optional<double> s = semo::cli::parseDuration(text);
+        if (!s || *s <= 0 || *s > 1e7) throw CLI::ValidationError("--time", "not a duration: " + text + " (e.g. 60s, 2min)");
+        analyze.seconds = *s;
+      },
+      "A mission: the horizon of the heartbeat questions, e.g. 60s, 2min (default 60s)");
   analyzeCmd->add_flag("--json", analyze.json, "Print the results as JSON");
   analyzeCmd->add_option("--svg", analyze.svg, "Write a chart of P(within t) against t");
 

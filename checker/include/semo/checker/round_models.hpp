@@ -34,4 +34,16 @@ struct SpreadAnswer {
 
 SpreadAnswer analyzeSpread(const SpreadParameters& p, std::size_t horizonRounds);
 
+// Losses in a row on one link: each period's message lost independently with probability `loss`;
+// the variable `run` counts the losses since the last message that got through, and the target is
+// `length` of them in a row (a heartbeat burst the model does not assume, a false takeover).
+ir::Model lossRunModel(std::size_t length, double loss);
+
+struct LossRunAnswer {
+  std::vector<double> withinPeriods;  // P(`length` losses in a row within t periods), t = 0 .. horizon
+  QuantitativeResult expectedPeriods;
+};
+
+LossRunAnswer analyzeLossRun(std::size_t length, double loss, std::size_t horizonPeriods);
+
 }  // namespace semo::checker

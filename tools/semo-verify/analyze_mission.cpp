@@ -1,6 +1,8 @@
 // `analyze MISSION --strategy S --loss-prob P`: for each knowledge item a group service spreads by
 // broadcast, how many of the runtime's gossip rounds pass until every robot working in the service
-// knows a fact one of them found (checker/round_models.hpp, specs/quantitative.md).
+// knows a fact one of them found; for each leader block that detects failures, how likely its
+// heartbeats are lost in longer runs than the model assumes, or long enough for a false takeover
+// (checker/round_models.hpp, specs/quantitative.md).
 #include <algorithm>
 #include <iostream>
 
@@ -56,16 +58,41 @@ Item measure(std::string name, const std::vector<std::string>& members, const st
   return item;
 }
 
+// A leader block's heartbeats on one link to a waiting candidate.
+struct Heartbeats {
+  std::string block;
+  std::int64_t heartbeatMillis = 0;
+  std::size_t takeoverAfter = 0, burst = 0, horizon = 0;  // periods
+  checker::LossRunAnswer outside, takeover;
+};
+
+std::string number(double v) { return std::isinf(v) ? std::string("infinite") : fmt::format("{:.9g}", v); }
+
+void printHeartbeats(const Heartbeats& h, double loss) {
+  std::cout << fmt::format("leader block {}: heartbeat every {} ms, takeover after {} silent period{}, assumed burst <= {}\n", h.block,
+                           h.heartbeatMillis, h.takeoverAfter, h.takeoverAfter == 1 ? "" : "s", h.burst);
+  std::cout << fmt::format("  one waiting candidate's link, heartbeats lost with probability {:g}, within {} periods ({:g} s):\n", loss,
+                           h.horizon, static_cast<double>(h.horizon * static_cast<std::size_t>(h.heartbeatMillis)) / 1000.0);
+  auto line = [&](const char* what, std::size_t run, const checker::LossRunAnswer& a) {
+    const double e = a.expectedPeriods.infinite ? std::numeric_limits<double>::infinity() : a.expectedPeriods.value;
+    std::cout << fmt::format("  {:<44} P = {:.6f}; expected after {} periods ({} s)\n", fmt::format(fmt::runtime(what), run), a.withinPeriods.back(),
+                             number(e), number(e * static_cast<double>(h.heartbeatMillis) / 1000.0));
+  };
+  line("{} lost in a row (outside the assumption):", h.burst + 1, h.outside);
+  line("{} lost in a row (a takeover, the leader alive):", h.takeoverAfter, h.takeover);
+}
+
 }  // namespace
 
-int analyzeSpreads(const AnalyzeOptions& options, const BuiltModel& built) {
+int analyzeMission(const AnalyzeOptions& options, const BuiltModel& built) {
   const model::MissionModel& mission = *built.mission;
   if (!options.lossProb) {
     std::cerr << "semo-verify: error: give --loss-prob P (the probability that one copy of a message is lost): a mission's "
-                 "knowledge spread is measured in gossip rounds under that loss\n";
+                 "knowledge spread and its heartbeats are measured under that loss\n";
     return kBadInput;
   }
   std::vector<Item> items;
+  std::vector<Heartbeats> heartbeats;
   try {
     for (const strategy::Service& service : mission.strategy.services) {
       if (service.kind != strategy::Service::Kind::Group || !service.dissemination || service.dissemination->via != "broadcast") continue;
@@ -80,16 +107,28 @@ int analyzeSpreads(const AnalyzeOptions& options, const BuiltModel& built) {
         }
       }
     }
+    for (const model::GroupBlock& b : mission.groupBlocks) {
+      if (!b.isLeaderBlock || !b.leader.detectsFailures) continue;
+      Heartbeats h;
+      h.block = mission.services.at(b.service).name;
+      h.heartbeatMillis = std::max<std::int64_t>(1, b.leader.heartbeatMillis);
+      h.takeoverAfter = static_cast<std::size_t>(std::max<std::int64_t>(1, b.leader.timeoutMillis / h.heartbeatMillis));  // as the translation
+      h.burst = static_cast<std::size_t>(std::max<std::int64_t>(0, mission.assumptions.lossBurst));
+      h.horizon = static_cast<std::size_t>(options.seconds * 1000.0 / static_cast<double>(h.heartbeatMillis));
+      h.outside = checker::analyzeLossRun(h.burst + 1, *options.lossProb, h.horizon);
+      h.takeover = checker::analyzeLossRun(h.takeoverAfter, *options.lossProb, h.horizon);
+      heartbeats.push_back(std::move(h));
+    }
   } catch (const checker::MarkovError& e) {
     std::cerr << "semo-verify: " << (e.limitReached ? "limit" : "error") << ": " << e.what() << "\n";
     return e.limitReached ? kLimit : kBadInput;
   }
-  if (items.empty()) {
+  if (items.empty() && heartbeats.empty()) {
     std::cerr << "semo-verify: error: " << options.model.input
-              << " has no group service that spreads knowledge by broadcast among two or more robots: nothing to measure\n";
+              << " has neither a group service that spreads knowledge by broadcast among two or more robots nor a leader block that "
+                 "detects failures: nothing to measure\n";
     return kBadInput;
   }
-  auto number = [](double v) { return std::isinf(v) ? std::string("infinite") : fmt::format("{:.9g}", v); };
   auto span = [&](double lo, double hi) { return lo == hi ? number(lo) : number(lo) + " .. " + number(hi); };
   if (options.json) {
     nlohmann::json out{{"schemaVersion", 1}, {"tool", std::string("semo-verify ") + kToolVersion}, {"model", options.model.input},
@@ -105,14 +144,27 @@ int analyzeSpreads(const AnalyzeOptions& options, const BuiltModel& built) {
         out["knowledge"].back()["byFinder"].push_back({{"robot", f.robot}, {"expectedRounds", value(f.expected)}, {"withinRounds", f.within}});
       }
     }
+    out["leaderBlocks"] = nlohmann::json::array();
+    for (const Heartbeats& h : heartbeats) {
+      auto run = [](std::size_t length, const checker::LossRunAnswer& a) {
+        return nlohmann::json{{"inARow", length},
+                              {"withinHorizon", a.withinPeriods.back()},
+                              {"expectedPeriods", a.expectedPeriods.infinite ? nlohmann::json("infinite") : nlohmann::json(a.expectedPeriods.value)}};
+      };
+      out["leaderBlocks"].push_back({{"block", h.block},
+                                     {"heartbeatMillis", h.heartbeatMillis},
+                                     {"horizonPeriods", h.horizon},
+                                     {"outsideAssumption", run(h.burst + 1, h.outside)},
+                                     {"falseTakeover", run(h.takeoverAfter, h.takeover)}});
+    }
     std::cout << out.dump(2) << "\n";
   } else {
     std::cout << "model:       " << options.model.input << "\n";
-    std::cout << fmt::format("assumes:     each copy of a message lost with probability {:g}; no crash; every robot in the service\n", *options.lossProb);
+    std::cout << fmt::format("assumes:     each copy of a message lost with probability {:g}, independently; no crash\n", *options.lossProb);
     for (const Item& i : items) {
       std::cout << fmt::format("knowledge {}: {} robots, a gossip round every {} ms, {} extra cop{} per message ({} states)\n", i.name,
                                i.robots, i.periodMillis, i.retransmissions, i.retransmissions == 1 ? "y" : "ies", i.states);
-      std::cout << "  rounds until every robot knows a fact one of them found (min .. max over which robot finds it):\n";
+      std::cout << "  rounds until every robot in the service knows a fact one of them found (min .. max over the finder):\n";
       std::cout << "  expected:       " << span(i.expected[0], i.expected[1]) << " rounds (" << i.method << ")\n";
       std::cout << "  P(within t rounds):";
       for (std::size_t t = 1; t < i.within[0].size(); ++t) {
@@ -122,8 +174,9 @@ int analyzeSpreads(const AnalyzeOptions& options, const BuiltModel& built) {
       }
       std::cout << "\n";
     }
+    for (const Heartbeats& h : heartbeats) printHeartbeats(h, *options.lossProb);
   }
-  if (options.svg) {
+  if (options.svg && !items.empty()) {
     std::vector<ChartSeries> series;
     for (const Item& i : items) {
       series.push_back({i.name + " (min)", i.within[0], true});
