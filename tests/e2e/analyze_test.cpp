@@ -61,6 +61,29 @@ TEST(Analyze, TheChartNeverReplacesTheModel) {
   EXPECT_TRUE(r.out.empty()) << r.out;
 }
 
+TEST(Analyze, ExportToPrismWritesTheModelAndItsQuestions) {
+  const fs::path dir = workDir("export_prism");
+  const std::string pm = (dir / "leader.pm").string(), props = (dir / "leader.props").string();
+  CliRun r = verify("export specs/examples/quantitative/leader_sync_4_4.ir --prism -o '" + pm + "' --props '" + props + "'", dir);
+  ASSERT_EQ(r.exit, 0) << r.err;
+  EXPECT_TRUE(r.out.empty());
+  const std::string model = slurp(pm), questions = slurp(props);
+  EXPECT_NE(model.find("\ndtmc\n"), std::string::npos) << "812 states, one rule enabled in each";
+  EXPECT_EQ(count(model, "\n  [] "), 5u) << "pick, read, done, retry, loop";
+  EXPECT_NE(model.find("1/256 : (s1' = 1)"), std::string::npos) << "the fractions kept exact";
+  EXPECT_NE(model.find("label \"elected\" = ((((s1 = 3) & (s2 = 3)) & (s3 = 3)) & (s4 = 3));"), std::string::npos) << model;
+  EXPECT_NE(questions.find("R{\"steps\"}=? [ F \"elected\" ];"), std::string::npos) << questions;
+  // --props is for --prism only; neither output may replace the model.
+  r = verify("export specs/examples/quantitative/gamble.ir --ir --props '" + props + "'", dir);
+  EXPECT_EQ(r.exit, 2);
+  const fs::path copy = dir / "gamble.ir";
+  fs::copy_file(fs::path(SEMO_SOURCE_DIR) / "specs/examples/quantitative/gamble.ir", copy);
+  const std::string before = slurp(copy);
+  r = verify("export '" + copy.string() + "' --prism -o '" + pm + "' --props '" + copy.string() + "'", dir);
+  EXPECT_EQ(r.exit, 2);
+  EXPECT_EQ(slurp(copy), before);
+}
+
 // The computed distribution of the swarm's knowledge spread against the simulator's: 1,000 seeded
 // runs of swarm3 with each copy of a message lost with probability 0.8 (three extra copies: a
 // message is lost with 0.8^4 = 0.41), the rounds from the first gossip round after the obstacle is

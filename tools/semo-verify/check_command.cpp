@@ -8,6 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "semo/checker/markov.hpp"
+#include "semo/checker/prism_export.hpp"
 #include "semo/checker/promela_export.hpp"
 #include "semo/semantics/ir_text.hpp"
 #include "semo/semantics/load.hpp"
@@ -96,6 +98,18 @@ int runCheck(const CheckOptions& options) {
   return report->exitCode;
 }
 
+namespace {
+// At most one rule enabled in every reachable state, as far as `limit` states show (a larger model
+// is written as an mdp, whose minimum and maximum then agree where it is deterministic after all).
+bool deterministicWithin(const ir::Model& model, std::size_t limit) {
+  try {
+    return checker::buildMarkovModel(model, {.maxStates = limit}).deterministic();
+  } catch (const checker::MarkovError&) {
+    return false;
+  }
+}
+}  // namespace
+
 int runExport(const ExportOptions& options) {
   std::unique_ptr<BuiltModel> built = buildModel(options.model);
   if (!built) return kBadInput;
@@ -104,17 +118,30 @@ int runExport(const ExportOptions& options) {
     std::cerr << "semo-verify: error: --spin-bfs and --spin-ltl apply to --promela only\n";
     return kBadInput;
   }
-  std::string text = options.format == "promela" ? checker::toPromela(model, {.breadthFirst = options.spinBreadthFirst, .liveness = options.spinLiveness})
-                                                 : ir::toText(model);
-  if (!options.output) {
-    std::cout << text;
-    return kOk;
+  if (options.properties && options.format != "prism") {
+    std::cerr << "semo-verify: error: --props applies to --prism only\n";
+    return kBadInput;
+  }
+  std::string text, properties;
+  if (options.format == "prism") {
+    const checker::PrismModel prism = checker::toPrism(model, deterministicWithin(model, 200'000));
+    text = prism.model;
+    properties = prism.properties;
+  } else {
+    text = options.format == "promela" ? checker::toPromela(model, {.breadthFirst = options.spinBreadthFirst, .liveness = options.spinLiveness})
+                                       : ir::toText(model);
   }
   const ModelInput& in = options.model;
-  if (!outputsSpareInputs({{"--output", *options.output}}, {in.input, in.strategy.value_or(""), in.robotsDir.value_or("")})) return kBadInput;
-  if (!writeAtomically(*options.output, text)) {
-    std::cerr << "semo-verify: error: cannot write '" << *options.output << "'\n";
-    return kBadInput;
+  std::vector<Output> outputs;
+  if (options.output) outputs.push_back({"--output", *options.output});
+  if (options.properties) outputs.push_back({"--props", *options.properties});
+  if (!outputsSpareInputs(outputs, {in.input, in.strategy.value_or(""), in.robotsDir.value_or("")})) return kBadInput;
+  if (!options.output) std::cout << text;
+  for (const auto& [path, content] : {std::pair{options.output, &text}, std::pair{options.properties, &properties}}) {
+    if (path && !writeAtomically(*path, *content)) {
+      std::cerr << "semo-verify: error: cannot write '" << *path << "'\n";
+      return kBadInput;
+    }
   }
   return kOk;
 }

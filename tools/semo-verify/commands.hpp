@@ -69,10 +69,11 @@ struct CheckOptions {
 
 struct ExportOptions {
   ModelInput model;
-  std::string format;  // "ir" or "promela"
+  std::string format;  // "ir", "promela" or "prism"
   bool spinBreadthFirst = false;
   bool spinLiveness = false;
   std::optional<std::string> output;
+  std::optional<std::string> properties;  // --prism: the properties file
 };
 
 struct SdfOptions {

@@ -99,12 +99,16 @@ int main(int argc, char** argv) {
   auto* formats = exportCmd->add_option_group("format", "What to write");
   formats->add_flag_callback("--ir", [&] { exportOptions.format = "ir"; }, "The IR in its text form (specs/ir.md)");
   formats->add_flag_callback("--promela", [&] { exportOptions.format = "promela"; }, "Promela for SPIN, one atomic step per rule");
+  formats->add_flag_callback("--prism", [&] { exportOptions.format = "prism"; },
+                             "The PRISM language, for PRISM or Storm: a dtmc when at most one rule is enabled in every reachable state, "
+                             "else an mdp (specs/quantitative.md)");
   formats->require_option(1);
   exportCmd->add_flag("--spin-ltl", exportOptions.spinLiveness,
                       "With --promela: the LTL properties as `ltl` claims under semo's fairness (pan -a -N claim), instead of the invariants");
   exportCmd->add_flag("--spin-bfs", exportOptions.spinBreadthFirst,
                                   "With --promela: no hidden variables, for pan -DBFS (then -m bounds the depth as --max-depth does)");
   exportCmd->add_option("--output,-o", exportOptions.output, "Write to this file (default: standard output)");
+  exportCmd->add_option("--props", exportOptions.properties, "With --prism: write the properties (P=?, R=?) to this file");
 
   semo::cli::SdfOptions sdfOptions;
   CLI::App* sdfCmd = app.add_subcommand("sdf", "Build each robot's dataflow task graph from a mission, or read one graph; analyse every "
