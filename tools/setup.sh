@@ -77,7 +77,7 @@ case "$mode" in
     for f in tests/e2e/sdf/*.json tests/diagnostics/taskgraph/*.json; do
       cp "$f" "build-fuzz/corpus-fuzz_taskgraph_reader/$(echo "$f" | tr / _)"
     done
-    for f in tests/e2e/ir/*.ir; do cp "$f" "build-fuzz/corpus-fuzz_ir_reader/$(echo "$f" | tr / _)"; done
+    for f in tests/e2e/ir/*.ir specs/examples/quantitative/*.ir; do cp "$f" "build-fuzz/corpus-fuzz_ir_reader/$(echo "$f" | tr / _)"; done
     for f in specs/*.semo specs/examples/*/*.semo tests/diagnostics/common/*.semo; do
       cp "$f" "build-fuzz/corpus-fuzz_mission_parser/$(echo "$f" | tr / _)"
     done
