@@ -93,6 +93,17 @@ void Parser::parseVerifyItem(ast::VerifyBlock& block) {
         block.lossBurst = burst;
         return;
       }
+      if (atWord("probability")) {
+        advance();
+        const Token& n = peek();
+        if (!at(Tok::Number) && !at(Tok::Int)) failExpected("a probability between 0 and 1 (write 'assume loss probability 0.2')", "");
+        advance();
+        double p = -1;
+        auto [ptr, ec] = std::from_chars(n.text.data(), n.text.data() + n.text.size(), p);
+        if (ec != std::errc() || ptr != n.text.data() + n.text.size() || !(p >= 0 && p <= 1)) fail(n, "a loss probability must be between 0 and 1");
+        block.lossProbability = p;
+        return;
+      }
       do {
         // `publish` is a reserved word but also names a loss kind.
         ast::Name kind = at(Tok::KwPublish) ? ast::Name{"publish", advance().range} : expectName("a loss kind");

@@ -82,6 +82,7 @@ void Elaborator::elaborateVerify() {
   if (none != nullptr && v.losses.size() > 1) diags_.error(none->range, "loss 'none' cannot be combined with other loss kinds");
   if (v.fairness) a.fairLoss = v.fairness->text == "fair";
   if (v.lossBurst) a.lossBurst = *v.lossBurst;
+  a.lossProbability = v.lossProbability;
 
   for (const ast::Name& check : v.checks) {
     if (std::find(allChecks().begin(), allChecks().end(), check.text) == allChecks().end()) continue;  // parser reported it

@@ -147,7 +147,9 @@ TEST(RobotNode, EveryRobotAgreesOnTheLeaderWhateverTheStartingOrder) {
       SCOPED_TRACE(tables.robots[i].name + ", started " + std::to_string(order[i] / 1000) + " ms late");
       ASSERT_FALSE(t.traces[i].summary.leaderChanges.empty()) << lines(tables, t.traces[i]);
       for (const runtime::LeaderChange& c : t.traces[i].summary.leaderChanges) {
-        if (c.block.rfind("SlaveTeam.Report.ReportPapers", 0) == 0) EXPECT_EQ(c.to, ev3_1) << lines(tables, t.traces[i]);
+        if (c.block.rfind("SlaveTeam.Report.ReportPapers", 0) == 0) {
+          EXPECT_EQ(c.to, ev3_1) << lines(tables, t.traces[i]);
+        }
       }
     }
   }

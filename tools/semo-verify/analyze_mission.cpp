@@ -84,13 +84,17 @@ void printHeartbeats(const Heartbeats& h, double loss) {
 
 }  // namespace
 
-int analyzeMission(const AnalyzeOptions& options, const BuiltModel& built) {
+int analyzeMission(const AnalyzeOptions& given, const BuiltModel& built) {
   const model::MissionModel& mission = *built.mission;
+  // --loss-prob, else the verify block's `assume loss probability P`.
+  AnalyzeOptions options = given;
+  if (!options.lossProb) options.lossProb = mission.assumptions.lossProbability;
   if (!options.lossProb) {
-    std::cerr << "semo-verify: error: give --loss-prob P (the probability that one copy of a message is lost): a mission's "
-                 "knowledge spread and its heartbeats are measured under that loss\n";
+    std::cerr << "semo-verify: error: give --loss-prob P or `assume loss probability P` in the verify block (the probability that "
+                 "one copy of a message is lost): a mission's knowledge spread and its heartbeats are measured under that loss\n";
     return kBadInput;
   }
+  const char* source = given.lossProb ? "--loss-prob" : "assume loss probability";
   std::vector<Item> items;
   std::vector<Heartbeats> heartbeats;
   try {
@@ -160,7 +164,8 @@ int analyzeMission(const AnalyzeOptions& options, const BuiltModel& built) {
     std::cout << out.dump(2) << "\n";
   } else {
     std::cout << "model:       " << options.model.input << "\n";
-    std::cout << fmt::format("assumes:     each copy of a message lost with probability {:g}, independently; no crash\n", *options.lossProb);
+    std::cout << fmt::format("assumes:     each copy of a message lost with probability {:g} ({}), independently; no crash\n",
+                             *options.lossProb, source);
     for (const Item& i : items) {
       std::cout << fmt::format("knowledge {}: {} robots, a gossip round every {} ms, {} extra cop{} per message ({} states)\n", i.name,
                                i.robots, i.periodMillis, i.retransmissions, i.retransmissions == 1 ? "y" : "ies", i.states);

@@ -172,6 +172,7 @@ struct VerifyBlock {
   std::optional<Name> fairness;           // "fair" or "unfair"
   std::optional<std::int64_t> lossBurst;  // assume loss burst <= N
   SourceRange lossBurstAt;
+  std::optional<double> lossProbability;  // assume loss probability P (for `analyze` only)
   std::vector<Name> checks;
   std::vector<Property> properties;
   SourceRange range;

@@ -178,6 +178,9 @@ struct Assumptions {
   bool losePublish = false, loseEvents = false, loseKnowledge = false, loseHeartbeats = false;
   bool fairLoss = true;
   std::int64_t lossBurst = 1;  // at most this many consecutive losses on one link (heartbeats)
+  // The chance that one copy of a message is lost, for the quantitative questions (`analyze`); the
+  // qualitative model does not read it.
+  std::optional<double> lossProbability;
   std::vector<std::string> checks;  // built-in properties to check (all of them if none named)
 };
 
