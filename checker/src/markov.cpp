@@ -30,6 +30,8 @@ struct StateHash {
 // iteration cannot give one without more machinery); the method text says so.
 constexpr double kConvergence = 1e-12;
 constexpr std::size_t kMaxSweeps = 10'000'000;
+constexpr std::size_t kMaxHorizon = 10'000'000;
+constexpr double kMaxHorizonWork = 5e9;
 
 template <typename F>
 void forEachOutcome(const MarkovModel& m, std::uint32_t a, F&& f) {
@@ -265,6 +267,15 @@ std::vector<char> statesWhere(const MarkovModel& m, const ir::Model& model, cons
 }
 
 std::vector<double> boundedReachability(const MarkovModel& m, const std::vector<char>& target, std::size_t horizon, Optimum optimum) {
+  // A sweep per step over every transition: a horizon the user asks for must not hang or exhaust
+  // memory (one value per step is kept).
+  const double work = static_cast<double>(horizon) * static_cast<double>(std::max<std::size_t>(1, m.successor.size()));
+  if (horizon > kMaxHorizon || work > kMaxHorizonWork) {
+    throw MarkovError(fmt::format("a horizon of {} steps over {} transitions is beyond the engine's limits ({} steps, {:.0e} "
+                                  "transition visits)",
+                                  horizon, m.successor.size(), kMaxHorizon, kMaxHorizonWork),
+                      true);
+  }
   std::vector<double> x(m.size()), next(m.size());
   for (std::size_t s = 0; s < m.size(); ++s) x[s] = target[s] != 0 ? 1.0 : 0.0;
   std::vector<double> out{x.empty() ? 0.0 : x[0]};

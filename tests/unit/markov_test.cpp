@@ -247,6 +247,15 @@ TEST(Markov, AStepOutsideARangeOrTooManyStatesIsAnErrorNotAnAnswer) {
   MarkovLimits small;
   small.maxStates = 10;
   EXPECT_THROW(buildMarkovModel(parse("semo-ir 1;\nvar x : 0..100 = 0;\nrule up : x < 100 -> x' = x + 1;\n"), small), MarkovError);
+  // A horizon too long to sweep is refused at once, not computed for hours.
+  const MarkovModel chain = buildMarkovModel(parse("semo-ir 1;\nvar x : 0..1 = 0;\nrule up : x == 0 -> x' = 1;\n"));
+  try {
+    (void)boundedReachability(chain, std::vector<char>{0, 1}, 20'000'000);
+    ADD_FAILURE() << "no error";
+  } catch (const MarkovError& e) {
+    EXPECT_TRUE(e.limitReached);
+  }
+  EXPECT_THROW((void)analyzeLossRun(4, 0.2, 100'000'000), MarkovError);
 }
 
 }  // namespace

@@ -109,8 +109,8 @@ int runAnalyze(const AnalyzeOptions& options) {
       answers.push_back(std::move(a));
     }
   } catch (const checker::MarkovError& e) {
-    std::cerr << "semo-verify: error: " << e.what() << "\n";
-    return kBadInput;
+    std::cerr << "semo-verify: " << (e.limitReached ? "limit" : "error") << ": " << e.what() << "\n";
+    return e.limitReached ? kLimit : kBadInput;
   }
 
   const std::string kind = deterministic ? "a Markov chain (one rule enabled at most)" : "a Markov decision process: min and max over schedules";

@@ -49,7 +49,8 @@ std::vector<char> statesWhere(const MarkovModel& m, const ir::Model& model, cons
 
 enum class Optimum { Min, Max };
 
-// P(target reached within t steps) from the initial state, for t = 0 .. horizon.
+// P(target reached within t steps) from the initial state, for t = 0 .. horizon. A horizon beyond
+// 10,000,000 steps or 5e9 transition visits is a MarkovError (limitReached), not a long wait.
 std::vector<double> boundedReachability(const MarkovModel& m, const std::vector<char>& target, std::size_t horizon,
                                         Optimum optimum = Optimum::Max);
 
