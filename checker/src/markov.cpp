@@ -47,15 +47,15 @@ std::vector<char> canReach(const MarkovModel& m, const std::vector<char>& target
     }
   }
   std::vector<char> reached(target);
-  std::deque<std::uint32_t> todo;
+  std::deque<std::uint32_t> frontier;
   for (std::uint32_t s = 0; s < m.size(); ++s) {
-    if (reached[s] != 0) todo.push_back(s);
+    if (reached[s] != 0) frontier.push_back(s);
   }
-  while (!todo.empty()) {
-    const std::uint32_t t = todo.front();
-    todo.pop_front();
+  while (!frontier.empty()) {
+    const std::uint32_t t = frontier.front();
+    frontier.pop_front();
     for (std::uint32_t s : predecessors[t]) {
-      if (reached[s] == 0 && through[s] != 0) reached[s] = 1, todo.push_back(s);
+      if (reached[s] == 0 && through[s] != 0) reached[s] = 1, frontier.push_back(s);
     }
   }
   return reached;
@@ -258,8 +258,7 @@ MarkovModel buildMarkovModel(const ir::Model& model, const MarkovLimits& limits)
   return m;
 }
 
-std::vector<char> statesWhere(const MarkovModel& m, const ir::Model& model, const ir::Expr& condition) {
-  (void)model;
+std::vector<char> statesWhere(const MarkovModel& m, const ir::Expr& condition) {
   const Program program(condition);
   std::vector<char> out(m.size());
   for (std::size_t s = 0; s < m.size(); ++s) out[s] = program.eval(m.states[s].data()) != 0 ? 1 : 0;

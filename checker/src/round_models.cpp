@@ -49,9 +49,9 @@ ir::Model knowledgeSpreadModel(const SpreadParameters& p) {
   return m;
 }
 
-SpreadAnswer analyzeSpread(const SpreadParameters& p, std::size_t horizonRounds) {
+SpreadAnswer analyzeSpread(const SpreadParameters& p, std::size_t horizonRounds, const MarkovLimits& limits) {
   const ir::Model model = knowledgeSpreadModel(p);
-  const MarkovModel chain = buildMarkovModel(model);
+  const MarkovModel chain = buildMarkovModel(model, limits);
   std::vector<char> everyone(chain.size(), 1);
   for (std::size_t s = 0; s < chain.size(); ++s) {
     for (std::size_t i = 0; i < p.robots; ++i) everyone[s] = everyone[s] != 0 && chain.states[s][i] == 1 ? 1 : 0;

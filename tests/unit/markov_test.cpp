@@ -35,7 +35,7 @@ std::string declarations(const ir::Model& m) {
 }
 
 std::vector<char> where(const MarkovModel& chain, const ir::Model& model, const std::string& text) {
-  return statesWhere(chain, model, condition(text, declarations(model)));
+  return statesWhere(chain, condition(text, declarations(model)));
 }
 
 std::vector<double> rewardOn(const ir::Model& m, const std::string& rule) {

@@ -99,7 +99,7 @@ int runAnalyze(const AnalyzeOptions& options) {
       Answer a;
       a.name = model.properties[p].name;
       a.target = ir::toText(model, model.properties[p].formula.args[0].atom);
-      const std::vector<char> target = checker::statesWhere(chain, model, model.properties[p].formula.args[0].atom);
+      const std::vector<char> target = checker::statesWhere(chain, model.properties[p].formula.args[0].atom);
       for (int k = 0; k < 2; ++k) {
         const Optimum o = k == 0 ? Optimum::Min : Optimum::Max;
         a.eventually[k] = checker::reachability(chain, target, o);

@@ -4,6 +4,7 @@
 // heartbeats are lost in longer runs than the model assumes, or long enough for a false takeover
 // (checker/round_models.hpp, specs/quantitative.md).
 #include <algorithm>
+#include <chrono>
 #include <iostream>
 
 #include <fmt/format.h>
@@ -35,10 +36,24 @@ struct Item {
 
 // The spread of one knowledge item among `members` (in the team's order), from each of them as the
 // robot that finds the fact, and the least and greatest of those.
+// The round model keeps a bit per robot (the runtime's round depends on the robots' order), so its
+// states grow as 2^n: a large swarm can take seconds per finder, which the progress lines say.
 Item measure(std::string name, const std::vector<std::string>& members, const strategy::Dissemination& d, const AnalyzeOptions& options) {
   Item item{std::move(name), members.size(), {}, d.periodMillis, d.retransmissions, {}, {}, {}, 0};
+  const auto started = std::chrono::steady_clock::now();
   for (std::size_t first = 0; first < members.size(); ++first) {
-    const checker::SpreadAnswer a = checker::analyzeSpread({members.size(), first, *options.lossProb, d.retransmissions}, options.rounds);
+    if (std::chrono::steady_clock::now() - started > std::chrono::seconds(1)) {
+      std::cerr << fmt::format("analyze: {}: from {} ({} of {})\n", item.name, members[first], first + 1, members.size());
+    }
+    checker::SpreadAnswer a;
+    try {
+      a = checker::analyzeSpread({members.size(), first, *options.lossProb, d.retransmissions}, options.rounds,
+                                 {.maxStates = options.maxStates});
+    } catch (const checker::MarkovError& e) {
+      throw checker::MarkovError(fmt::format("knowledge {} ({} robots): {}{}", item.name, members.size(), e.what(),
+                                             e.limitReached ? "; --max-states raises the limit" : ""),
+                                 e.limitReached);
+    }
     item.states = std::max(item.states, a.states);
     item.method = a.expectedRounds.method;
     const double e = a.expectedRounds.infinite ? std::numeric_limits<double>::infinity() : a.expectedRounds.value;

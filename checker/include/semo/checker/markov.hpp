@@ -45,7 +45,7 @@ struct MarkovError : std::runtime_error {
 MarkovModel buildMarkovModel(const ir::Model& model, const MarkovLimits& limits = {});
 
 // Per state: whether `condition` (an expression of the model) holds.
-std::vector<char> statesWhere(const MarkovModel& m, const ir::Model& model, const ir::Expr& condition);
+std::vector<char> statesWhere(const MarkovModel& m, const ir::Expr& condition);
 
 enum class Optimum { Min, Max };
 

@@ -32,7 +32,7 @@ struct SpreadAnswer {
   QuantitativeResult expectedRounds;
 };
 
-SpreadAnswer analyzeSpread(const SpreadParameters& p, std::size_t horizonRounds);
+SpreadAnswer analyzeSpread(const SpreadParameters& p, std::size_t horizonRounds, const MarkovLimits& limits = {});
 
 // Losses in a row on one link: each period's message lost independently with probability `loss`;
 // the variable `run` counts the losses since the last message that got through, and the target is
