@@ -26,8 +26,9 @@ struct StateHash {
   }
 };
 
-// A change below this between two sweeps ends value iteration. Not a bound on the error (value
-// iteration cannot give one without more machinery); the method text says so.
+// A change below this between two sweeps ends value iteration (expected rewards on an MDP). Not a
+// bound on the error: the iterates approach from below, so the answer is a lower bound, and the
+// method text says so. Probabilities use interval iteration instead, which has a bound.
 constexpr double kConvergence = 1e-12;
 constexpr std::size_t kMaxSweeps = 10'000'000;
 constexpr std::size_t kMaxHorizon = 10'000'000;
@@ -126,7 +127,7 @@ std::vector<char> almostSurely(const MarkovModel& m, const std::vector<char>& ta
 
 QuantitativeResult infinite(const char* why) {
   QuantitativeResult out;
-  out.value = std::numeric_limits<double>::infinity();
+  out.value = out.lower = out.upper = std::numeric_limits<double>::infinity();
   out.infinite = true;
   out.method = why;
   return out;
@@ -202,9 +203,141 @@ std::vector<double> iterate(const MarkovModel& m, const std::vector<char>& unkno
     }
   }
   method = fmt::format("value iteration over {} states, {} sweeps, stopped when no value changed by more than {:.0e} (relative); "
-                       "not a guaranteed error bound",
+                       "a lower bound, its error not bounded",
                        m.size(), sweeps, kConvergence);
   return x;
+}
+
+// Interval iteration: a lower bound from 0 and an upper bound from 1 over the `unknown` states (the
+// others keep `fixed`), swept together until the initial state's bounds are within 2 * precision.
+// Both converge to the one solution once the states with probability 0 are fixed and, for Max, each
+// maximal end component among the unknown states is read as one state whose actions are those that
+// leave it (inside it a scheduler may go anywhere, so its states share the best way out); for Min
+// there are none (a scheduler could stay in one for ever: those states are in the 0 set).
+QuantitativeResult intervalIteration(const MarkovModel& m, const std::vector<char>& unknown, const std::vector<double>& fixed,
+                                     Optimum optimum, double precision) {
+  std::vector<std::int64_t> component(m.size(), -1);
+  if (optimum == Optimum::Max) component = maximalEndComponents(m, unknown);
+  std::int64_t components = 0;
+  for (std::int64_t c : component) components = std::max(components, c + 1);
+  auto internal = [&](std::uint32_t s, std::uint32_t a) {
+    if (component[s] < 0) return false;
+    bool inside = true;
+    forEachOutcome(m, a, [&](std::uint32_t t, double) { inside = inside && component[t] == component[s]; });
+    return inside;
+  };
+  std::vector<char> leaves(m.actions(), 1);
+  for (std::uint32_t s = 0; s < m.size(); ++s) {
+    if (unknown[s] == 0) continue;
+    for (std::uint32_t a = m.actionStart[s]; a < m.actionStart[s + 1]; ++a) leaves[a] = internal(s, a) ? 0 : 1;
+  }
+  std::vector<double> lower = fixed, upper = fixed;
+  for (std::size_t s = 0; s < m.size(); ++s) {
+    if (unknown[s] != 0) upper[s] = 1.0;
+  }
+  std::vector<double> bestLower(static_cast<std::size_t>(components)), bestUpper(static_cast<std::size_t>(components));
+  const double perSweep = static_cast<double>(std::max<std::size_t>(1, m.successor.size()));
+  std::size_t sweeps = 0;
+  bool converged = false;
+  while (!converged && static_cast<double>(sweeps) * perSweep < kMaxHorizonWork) {
+    ++sweeps;
+    std::fill(bestLower.begin(), bestLower.end(), 0.0);
+    std::fill(bestUpper.begin(), bestUpper.end(), 0.0);
+    for (std::uint32_t s = 0; s < m.size(); ++s) {
+      if (unknown[s] == 0) continue;
+      double lo = optimum == Optimum::Min ? 1.0 : 0.0, hi = lo;
+      bool any = false;
+      for (std::uint32_t a = m.actionStart[s]; a < m.actionStart[s + 1]; ++a) {
+        if (leaves[a] == 0) continue;
+        double l = 0, h = 0;
+        forEachOutcome(m, a, [&](std::uint32_t t, double p) { l += p * lower[t], h += p * upper[t]; });
+        lo = optimum == Optimum::Min ? std::min(lo, l) : std::max(lo, l);
+        hi = optimum == Optimum::Min ? std::min(hi, h) : std::max(hi, h);
+        any = true;
+      }
+      if (!any && component[s] < 0) lo = lower[s], hi = upper[s];
+      if (component[s] >= 0) {
+        const auto c = static_cast<std::size_t>(component[s]);
+        bestLower[c] = std::max(bestLower[c], any ? lo : 0.0);
+        bestUpper[c] = std::max(bestUpper[c], any ? hi : 0.0);
+        continue;
+      }
+      lower[s] = lo, upper[s] = hi;  // Gauss-Seidel: later states read the new values
+    }
+    for (std::uint32_t s = 0; s < m.size(); ++s) {
+      if (unknown[s] == 0 || component[s] < 0) continue;
+      lower[s] = bestLower[static_cast<std::size_t>(component[s])];
+      upper[s] = bestUpper[static_cast<std::size_t>(component[s])];
+    }
+    converged = upper[0] - lower[0] <= 2 * precision;
+  }
+  QuantitativeResult out;
+  out.lower = std::clamp(lower[0], 0.0, 1.0);
+  out.upper = std::clamp(upper[0], out.lower, 1.0);
+  out.value = (out.lower + out.upper) / 2;
+  out.method = fmt::format("interval iteration over {} states{}, {} sweep{}: the value lies in [{:.12g}, {:.12g}]{}", m.size(),
+                           components > 0 ? fmt::format(" ({} end component{} collapsed)", components, components == 1 ? "" : "s") : "",
+                           sweeps, sweeps == 1 ? "" : "s", out.lower, out.upper,
+                           converged ? fmt::format(" (within {:.0e} of the midpoint)", precision)
+                                     : fmt::format(" (the precision {:.0e} not reached within {:.0e} transition visits)", precision,
+                                                   kMaxHorizonWork));
+  return out;
+}
+
+// Strongly connected components of the graph whose nodes `node` marks and whose edges are the
+// outcomes of the actions `allowed` marks (iteratively: models have millions of states).
+std::vector<std::int64_t> stronglyConnected(const MarkovModel& m, const std::vector<char>& node, const std::vector<char>& allowed) {
+  const std::size_t n = m.size();
+  std::vector<std::int64_t> index(n, -1), low(n, 0), scc(n, -1);
+  std::vector<char> onStack(n, 0);
+  std::vector<std::uint32_t> stack;
+  struct Frame {
+    std::uint32_t state, action, outcome;
+  };
+  std::vector<Frame> calls;
+  std::int64_t counter = 0, sccs = 0;
+  for (std::uint32_t root = 0; root < n; ++root) {
+    if (node[root] == 0 || index[root] >= 0) continue;
+    auto open = [&](std::uint32_t s) {
+      index[s] = low[s] = counter++;
+      stack.push_back(s), onStack[s] = 1;
+      calls.push_back({s, m.actionStart[s], m.actionStart[s] < m.actionStart[s + 1] ? m.outcomeStart[m.actionStart[s]] : 0});
+    };
+    open(root);
+    while (!calls.empty()) {
+      Frame& f = calls.back();
+      const std::uint32_t s = f.state;
+      bool descended = false;
+      while (f.action < m.actionStart[s + 1] && !descended) {
+        if (allowed[f.action] == 0 || f.outcome >= m.outcomeStart[f.action + 1]) {
+          ++f.action;
+          if (f.action < m.actionStart[s + 1]) f.outcome = m.outcomeStart[f.action];
+          continue;
+        }
+        const std::uint32_t t = m.successor[f.outcome++];
+        if (node[t] == 0) continue;
+        if (index[t] < 0) {
+          open(t);  // invalidates f
+          descended = true;
+        } else if (onStack[t] != 0) {
+          low[s] = std::min(low[s], index[t]);
+        }
+      }
+      if (descended) continue;
+      if (low[s] == index[s]) {
+        std::uint32_t t = 0;
+        do {
+          t = stack.back();
+          stack.pop_back(), onStack[t] = 0;
+          scc[t] = sccs;
+        } while (t != s);
+        ++sccs;
+      }
+      calls.pop_back();
+      if (!calls.empty()) low[calls.back().state] = std::min(low[calls.back().state], low[s]);
+    }
+  }
+  return scc;
 }
 
 }  // namespace
@@ -224,7 +357,7 @@ MarkovModel buildMarkovModel(const ir::Model& model, const MarkovLimits& limits)
     auto [it, fresh] = index.emplace(s, static_cast<std::uint32_t>(m.states.size()));
     if (fresh) {
       if (m.states.size() >= limits.maxStates) {
-        throw MarkovError(fmt::format("more than {} reachable states (the limit of the quantitative engine)", limits.maxStates), true);
+        throw MarkovError(fmt::format("more than {} reachable states (the limit of the quantitative engine)", limits.maxStates), true, true);
       }
       m.states.push_back(std::move(s));
     }
@@ -256,6 +389,45 @@ MarkovModel buildMarkovModel(const ir::Model& model, const MarkovLimits& limits)
   }
   m.actionStart.push_back(static_cast<std::uint32_t>(m.actionRule.size()));
   return m;
+}
+
+std::vector<std::int64_t> maximalEndComponents(const MarkovModel& m, const std::vector<char>& within) {
+  // Refine: keep the actions that stay inside their state's strongly connected component, drop the
+  // states left with no action, until nothing changes; the components left are the MECs.
+  std::vector<char> node = within, allowed(m.actions(), 0);
+  for (std::uint32_t s = 0; s < m.size(); ++s) {
+    if (node[s] == 0) continue;
+    for (std::uint32_t a = m.actionStart[s]; a < m.actionStart[s + 1]; ++a) {
+      bool inside = true;
+      forEachOutcome(m, a, [&](std::uint32_t t, double) { inside = inside && node[t] != 0; });
+      allowed[a] = inside ? 1 : 0;
+    }
+  }
+  std::vector<std::int64_t> scc;
+  for (bool changed = true; changed;) {
+    changed = false;
+    scc = stronglyConnected(m, node, allowed);
+    for (std::uint32_t s = 0; s < m.size(); ++s) {
+      if (node[s] == 0) continue;
+      bool any = false;
+      for (std::uint32_t a = m.actionStart[s]; a < m.actionStart[s + 1]; ++a) {
+        if (allowed[a] == 0) continue;
+        bool inside = true;
+        forEachOutcome(m, a, [&](std::uint32_t t, double) { inside = inside && node[t] != 0 && scc[t] == scc[s]; });
+        if (!inside) allowed[a] = 0, changed = true;
+        any = any || inside;
+      }
+      if (!any) node[s] = 0, changed = true;
+    }
+  }
+  // Number the components densely, in the order of their first state.
+  std::vector<std::int64_t> out(m.size(), -1);
+  std::unordered_map<std::int64_t, std::int64_t> dense;
+  for (std::uint32_t s = 0; s < m.size(); ++s) {
+    if (node[s] == 0) continue;
+    out[s] = dense.emplace(scc[s], static_cast<std::int64_t>(dense.size())).first->second;
+  }
+  return out;
 }
 
 std::vector<char> statesWhere(const MarkovModel& m, const ir::Expr& condition) {
@@ -298,7 +470,7 @@ std::vector<double> boundedReachability(const MarkovModel& m, const std::vector<
   return out;
 }
 
-QuantitativeResult reachability(const MarkovModel& m, const std::vector<char>& target, Optimum optimum) {
+QuantitativeResult reachability(const MarkovModel& m, const std::vector<char>& target, Optimum optimum, double precision) {
   // Probability 0 decided on the graph first: the equations then have one solution.
   std::vector<char> everywhere(m.size(), 1);
   std::vector<char> zero(m.size());
@@ -317,7 +489,7 @@ QuantitativeResult reachability(const MarkovModel& m, const std::vector<char>& t
   }
   QuantitativeResult out;
   if (unknown[0] == 0) {
-    out.value = fixed[0];
+    out.value = out.lower = out.upper = fixed[0];
     out.method = "exact: decided on the graph (probability 0 or 1)";
     return out;
   }
@@ -326,14 +498,10 @@ QuantitativeResult reachability(const MarkovModel& m, const std::vector<char>& t
       if (unknown[s] == 0 || m.actionStart[s] == m.actionStart[s + 1]) continue;
       forEachOutcome(m, m.actionStart[s], [&](std::uint32_t t, double p) { constant[s] += p * fixed[t]; });
     }
-    out.value = solveChain(m, unknown, constant, out.method)[0];
-  } else {
-    std::vector<char> allowed(m.actions(), 1);
-    std::vector<double> none(m.actions(), 0.0);
-    out.value = iterate(m, unknown, fixed, none, allowed, optimum, out.method)[0];
+    out.value = out.lower = out.upper = std::clamp(solveChain(m, unknown, constant, out.method)[0], 0.0, 1.0);
+    return out;
   }
-  out.value = std::clamp(out.value, 0.0, 1.0);
-  return out;
+  return intervalIteration(m, unknown, fixed, optimum, precision);
 }
 
 QuantitativeResult expectedReward(const MarkovModel& m, const std::vector<char>& target, const std::vector<double>& rewardOfRule,
@@ -355,7 +523,7 @@ QuantitativeResult expectedReward(const MarkovModel& m, const std::vector<char>&
     for (std::uint32_t s = 0; s < m.size(); ++s) {
       if (unknown[s] != 0 && m.actionStart[s] != m.actionStart[s + 1]) constant[s] = rewardOfAction[m.actionStart[s]];
     }
-    out.value = solveChain(m, unknown, constant, out.method)[0];
+    out.value = out.lower = out.upper = solveChain(m, unknown, constant, out.method)[0];
     return out;
   }
   // The minimum uses only actions that keep to the finite states. Value iteration from 0 finds the
@@ -376,7 +544,8 @@ QuantitativeResult expectedReward(const MarkovModel& m, const std::vector<char>&
     }
   }
   std::vector<double> fixed(m.size(), 0.0);
-  out.value = iterate(m, unknown, fixed, rewardOfAction, allowed, optimum, out.method)[0];
+  out.value = out.lower = iterate(m, unknown, fixed, rewardOfAction, allowed, optimum, out.method)[0];
+  out.upper = std::numeric_limits<double>::infinity();  // iterates from 0 only ever approach from below
   return out;
 }
 

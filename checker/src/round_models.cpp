@@ -69,6 +69,15 @@ SpreadAnswer analyzeSpread(const SpreadParameters& p, std::size_t horizonRounds,
   return out;
 }
 
+SampledAnswer sampleSpread(const SpreadParameters& p, SamplingOptions options) {
+  const ir::Model model = knowledgeSpreadModel(p);
+  std::vector<ir::Expr> everyone;
+  for (std::size_t i = 0; i < p.robots; ++i) everyone.push_back(is(static_cast<ir::VarId>(i), 1));
+  std::vector<char> round(model.rules.size(), 0);
+  round[0] = 1;  // `round`
+  return sampleRuns(model, ir::conjunction(std::move(everyone)), round, options);
+}
+
 ir::Model lossRunModel(std::size_t length, double loss) {
   ir::Model m;
   const auto top = static_cast<std::int32_t>(length);

@@ -61,6 +61,42 @@ TEST(Analyze, TheChartNeverReplacesTheModel) {
   EXPECT_TRUE(r.out.empty()) << r.out;
 }
 
+// swarm10's round model has 46,592 states per finder: with --max-states 1000 it is estimated from
+// simulated runs instead, labelled so, and each P(within t) lies within its band of the exact one;
+// the same seed gives the same bytes, and --runs 0 gives up with exit 3 instead.
+TEST(Analyze, BeyondTheStateLimitTheSpreadIsEstimatedWithinItsBand) {
+  const fs::path dir = workDir("analyze_sampled");
+  const std::string mission = "specs/examples/swarm/swarm10.semo --strategy specs/examples/swarm/strategy.xml --loss-prob 0.6 --rounds 4";
+  CliRun exact = verify("analyze " + mission + " --json", dir);
+  ASSERT_EQ(exact.exit, 0) << exact.err;
+  CliRun sampled = verify("analyze " + mission + " --json --max-states 1000 --runs 3000 --seed 5", dir);
+  ASSERT_EQ(sampled.exit, 0) << sampled.err;
+  EXPECT_NE(sampled.err.find("estimating from 3000 simulated runs per finder"), std::string::npos) << sampled.err;
+  const nlohmann::json e = nlohmann::json::parse(exact.out).at("knowledge").at(0), s = nlohmann::json::parse(sampled.out).at("knowledge").at(0);
+  EXPECT_FALSE(e.contains("statistical"));
+  ASSERT_TRUE(s.contains("statistical")) << s.dump();
+  const double band = s["statistical"]["withinBand"];
+  EXPECT_NEAR(band, std::sqrt(std::log(40.0) / 6000.0), 1e-12);
+  EXPECT_NE(s["method"].get<std::string>().find("not exact"), std::string::npos);
+  double furthest = 0;
+  for (const char* side : {"min", "max"}) {
+    for (std::size_t t = 0; t <= 4; ++t) {
+      const double d = std::fabs(s["withinRounds"][side][t].get<double>() - e["withinRounds"][side][t].get<double>());
+      EXPECT_LE(d, band) << side << " t = " << t;
+      furthest = std::max(furthest, d);
+    }
+  }
+  EXPECT_GT(furthest, 0.0) << "estimated, not the exact figures";
+  CliRun again = verify("analyze " + mission + " --json --max-states 1000 --runs 3000 --seed 5", dir);
+  EXPECT_EQ(again.out, sampled.out);
+  CliRun text = verify("analyze " + mission + " --max-states 1000 --runs 3000", dir);
+  EXPECT_NE(text.out.find("ESTIMATED from 3000 simulated runs per finder"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("each +-0.0"), std::string::npos) << text.out;
+  CliRun refused = verify("analyze " + mission + " --max-states 1000 --runs 0", dir);
+  EXPECT_EQ(refused.exit, 3);
+  EXPECT_NE(refused.err.find("--max-states raises the limit"), std::string::npos) << refused.err;
+}
+
 TEST(Analyze, ExportToPrismWritesTheModelAndItsQuestions) {
   const fs::path dir = workDir("export_prism");
   const std::string pm = (dir / "leader.pm").string(), props = (dir / "leader.props").string();

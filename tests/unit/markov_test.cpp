@@ -7,6 +7,7 @@
 
 #include "semo/checker/markov.hpp"
 #include "semo/checker/round_models.hpp"
+#include "semo/checker/statistical.hpp"
 #include "semo/frontend/diagnostics.hpp"
 #include "semo/semantics/ir_text.hpp"
 
@@ -200,6 +201,143 @@ TEST(Markov, NondeterministicChoicesGiveTheMinimumAndMaximumOverSchedulers) {
   const QuantitativeResult fewest = expectedReward(chain, one, steps, Optimum::Min);
   EXPECT_NEAR(fewest.value, 2.0, 1e-9) << fewest.method;  // only `coin` reaches x = 1 surely
   EXPECT_TRUE(expectedReward(chain, one, steps, Optimum::Max).infinite);
+}
+
+// Two states a scheduler can go between for ever (an end component): from x = 0 `try` reaches the
+// goal with 0.3, from x = 1 `try` with 0.6, the rest of each try the dead end. The best schedule
+// walks to x = 1 first: 0.6. An upper bound iterated from 1 without collapsing the component would
+// stay at 1 (each state seems to reach 1 through the other); the worst schedule walks for ever: 0.
+TEST(Markov, IntervalIterationCollapsesEndComponentsAndBracketsTheAnswer) {
+  const ir::Model m = parse(
+      "semo-ir 1;\nvar x : 0..3 = 0;\n"
+      "rule walk : x == 0 -> x' = 1;\n"
+      "rule back : x == 1 -> x' = 0;\n"
+      "rule try0 : x == 0 -> 3/10 : x' = 2 + 7/10 : x' = 3;\n"
+      "rule try1 : x == 1 -> 3/5 : x' = 2 + 2/5 : x' = 3;\n");
+  const MarkovModel chain = buildMarkovModel(m);
+  const std::vector<char> goal = where(chain, m, "x == 2");
+  std::vector<char> walking(chain.size(), 0);
+  for (std::size_t s = 0; s < chain.size(); ++s) walking[s] = chain.states[s][0] < 2 ? 1 : 0;
+  const std::vector<std::int64_t> mec = maximalEndComponents(chain, walking);
+  EXPECT_GE(mec[0], 0);
+  EXPECT_EQ(mec[0], mec[1]) << "x = 0 and x = 1 form one end component";
+  const QuantitativeResult best = reachability(chain, goal, Optimum::Max);
+  EXPECT_NEAR(best.value, 0.6, 1e-9) << best.method;
+  EXPECT_LE(best.lower, 0.6 + 1e-15);
+  EXPECT_GE(best.upper, 0.6 - 1e-15);
+  EXPECT_LE(best.upper - best.lower, 2e-9) << best.method;
+  EXPECT_NE(best.method.find("interval iteration"), std::string::npos) << best.method;
+  EXPECT_NE(best.method.find("1 end component collapsed"), std::string::npos) << best.method;
+  EXPECT_NEAR(reachability(chain, goal, Optimum::Min).value, 0.0, 1e-12);
+}
+
+// Random small MDPs: interval iteration against every memoryless deterministic scheduler (which
+// suffice for reachability), each one's chain solved exactly by sparse LU.
+TEST(Markov, IntervalIterationAgreesWithTheBestAndWorstOfAllSchedulers) {
+  std::uint64_t seed = 0x9e3779b97f4a7c15ull;
+  auto next = [&seed](std::uint32_t bound) {
+    seed ^= seed << 13, seed ^= seed >> 7, seed ^= seed << 17;
+    return static_cast<std::uint32_t>(seed % bound);
+  };
+  int strictlyBetween = 0, schedulesDiffer = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const std::uint32_t n = 4 + next(5);  // the last state is the target, the one before a dead end
+    MarkovModel mdp;
+    mdp.states.resize(n);
+    mdp.outcomeStart.push_back(0);
+    for (std::uint32_t s = 0; s < n; ++s) {
+      mdp.actionStart.push_back(static_cast<std::uint32_t>(mdp.actionRule.size()));
+      const std::uint32_t actions = s + 2 >= n ? 0 : 1 + next(2);
+      for (std::uint32_t a = 0; a < actions; ++a) {
+        const std::uint32_t outcomes = 1 + next(2), first = next(n), second = (first + 1 + next(n - 1)) % n;
+        const double p = outcomes == 1 ? 1.0 : 0.1 * (1 + next(9));
+        mdp.actionRule.push_back(a);
+        mdp.successor.push_back(first), mdp.probability.push_back(p);
+        if (outcomes == 2) mdp.successor.push_back(second), mdp.probability.push_back(1 - p);
+        mdp.outcomeStart.push_back(static_cast<std::uint32_t>(mdp.successor.size()));
+      }
+    }
+    mdp.actionStart.push_back(static_cast<std::uint32_t>(mdp.actionRule.size()));
+    std::vector<char> target(n, 0);
+    target[n - 1] = 1;
+    double lowest = 1, highest = 0;
+    std::uint32_t schedulers = 1;
+    for (std::uint32_t s = 0; s < n; ++s) schedulers *= std::max<std::uint32_t>(1, mdp.actionStart[s + 1] - mdp.actionStart[s]);
+    for (std::uint32_t k = 0; k < schedulers; ++k) {
+      MarkovModel fixed;  // the chain this scheduler leaves
+      fixed.states.resize(n);
+      fixed.outcomeStart.push_back(0);
+      std::uint32_t code = k;
+      for (std::uint32_t s = 0; s < n; ++s) {
+        fixed.actionStart.push_back(static_cast<std::uint32_t>(fixed.actionRule.size()));
+        const std::uint32_t choices = mdp.actionStart[s + 1] - mdp.actionStart[s];
+        if (choices == 0) continue;
+        const std::uint32_t a = mdp.actionStart[s] + code % choices;
+        code /= choices;
+        fixed.actionRule.push_back(0);
+        for (std::uint32_t o = mdp.outcomeStart[a]; o < mdp.outcomeStart[a + 1]; ++o) {
+          fixed.successor.push_back(mdp.successor[o]), fixed.probability.push_back(mdp.probability[o]);
+        }
+        fixed.outcomeStart.push_back(static_cast<std::uint32_t>(fixed.successor.size()));
+      }
+      fixed.actionStart.push_back(static_cast<std::uint32_t>(fixed.actionRule.size()));
+      const double v = reachability(fixed, target, Optimum::Max).value;
+      lowest = std::min(lowest, v), highest = std::max(highest, v);
+    }
+    const QuantitativeResult mx = reachability(mdp, target, Optimum::Max), mn = reachability(mdp, target, Optimum::Min);
+    EXPECT_NEAR(mx.value, highest, 1e-8) << "trial " << trial << ": " << mx.method;
+    EXPECT_NEAR(mn.value, lowest, 1e-8) << "trial " << trial << ": " << mn.method;
+    EXPECT_LE(mx.lower, highest + 1e-12);
+    EXPECT_GE(mx.upper, highest - 1e-12);
+    EXPECT_LE(mn.lower, lowest + 1e-12);
+    EXPECT_GE(mn.upper, lowest - 1e-12);
+    strictlyBetween += highest > 1e-6 && highest < 1 - 1e-6 ? 1 : 0;
+    schedulesDiffer += highest - lowest > 1e-6 ? 1 : 0;
+  }
+  EXPECT_GE(strictlyBetween, 30) << "the random models must not all be decided on the graph";
+  EXPECT_GE(schedulesDiffer, 50);
+}
+
+// Simulated runs of a round model against the exact answer: every P(within t) inside the
+// Dvoretzky-Kiefer-Wolfowitz band, the mean inside its interval (both at 95 %: the seeds are fixed,
+// so this test does not flicker), the same seed giving the same estimate.
+TEST(Markov, SampledRunsOfARoundModelFallWithinTheirBandsOfTheExactAnswer) {
+  const SpreadParameters p{.robots = 5, .firstKnower = 1, .lossPerCopy = 0.5, .retransmissions = 0};
+  const SpreadAnswer exact = analyzeSpread(p, 6);
+  const SampledAnswer sampled = sampleSpread(p, {.runs = 4000, .seed = 7, .horizon = 6});
+  EXPECT_FALSE(sampled.scheduled) << "a round model enables one rule at a time";
+  EXPECT_EQ(sampled.unfinished, 0u);
+  EXPECT_NEAR(sampled.band, std::sqrt(std::log(40.0) / 8000.0), 1e-12);
+  ASSERT_EQ(sampled.within.size(), exact.withinRounds.size());
+  double widest = 0;
+  for (std::size_t t = 0; t < exact.withinRounds.size(); ++t) {
+    EXPECT_LE(std::fabs(sampled.within[t] - exact.withinRounds[t]), sampled.band) << "t = " << t;
+    widest = std::max(widest, std::fabs(sampled.within[t] - exact.withinRounds[t]));
+  }
+  EXPECT_GT(widest, 0.0) << "an estimate, not the exact answer copied";
+  EXPECT_LE(std::fabs(sampled.meanUnits - exact.expectedRounds.value), sampled.meanHalfWidth) << sampled.method;
+  EXPECT_NE(sampled.method.find("not exact"), std::string::npos);
+  const SampledAnswer again = sampleSpread(p, {.runs = 4000, .seed = 7, .horizon = 6});
+  EXPECT_EQ(again.within, sampled.within);
+  EXPECT_EQ(again.meanUnits, sampled.meanUnits);
+  EXPECT_NE(sampleSpread(p, {.runs = 4000, .seed = 8, .horizon = 6}).within, sampled.within);
+}
+
+// Where several rules are enabled a run draws one uniformly, and says so: gamble, coin and quit
+// drawn with a third each reach the goal with 2/5 (1/6 + 1/6 + P/6 = P); the rest end at the dead
+// end (runs that end short of the target, so no mean).
+TEST(Markov, SampledRunsOfAnMdpDrawTheSchedulerAndSayItWasDrawn) {
+  const ir::Model m = parse(
+      "semo-ir 1;\nvar x : 0..2 = 0;\n"
+      "rule gamble : x == 0 -> 1/2 : x' = 1 + 1/2 : x' = 2;\n"
+      "rule coin : x == 0 -> 0.5 : x' = 1 + 0.5 : skip;\n"
+      "rule quit : x == 0 -> x' = 2;\n");
+  const SampledAnswer a = sampleRuns(m, condition("x == 1", "var x : 0..2;\n"), std::vector<char>(3, 1), {.runs = 20000, .seed = 3, .horizon = 60});
+  EXPECT_TRUE(a.scheduled);
+  EXPECT_NEAR(a.within.back(), 0.4, a.band);
+  EXPECT_GT(a.unfinished, 0u);
+  EXPECT_NE(a.method.find("uniformly drawn"), std::string::npos) << a.method;
+  EXPECT_NE(a.method.find("no mean"), std::string::npos) << a.method;
 }
 
 // Knowledge spread in the runtime's gossip rounds. When the last robot in the team's order finds

@@ -12,6 +12,7 @@
 #include "analyze_internal.hpp"
 #include "probability_chart.hpp"
 #include "semo/checker/markov.hpp"
+#include "semo/checker/statistical.hpp"
 #include "semo/semantics/ir_text.hpp"
 
 namespace semo::cli {
@@ -32,9 +33,71 @@ std::string range(const checker::QuantitativeResult (&r)[2], bool chain) {
   return "min " + number(r[0].value) + ", max " + number(r[1].value);
 }
 
+// The methods of the minimum and the maximum, once when they are the same.
+std::string methods(const checker::QuantitativeResult (&r)[2], bool chain) {
+  if (chain || r[0].method == r[1].method) return r[0].method;
+  return "min: " + r[0].method + "; max: " + r[1].method;
+}
+
 nlohmann::json resultJson(const checker::QuantitativeResult (&r)[2]) {
-  auto one = [](const checker::QuantitativeResult& q) { return q.infinite ? nlohmann::json("infinite") : nlohmann::json(q.value); };
-  return {{"min", one(r[0])}, {"max", one(r[1])}, {"method", r[0].method}};
+  auto one = [](double v) { return std::isinf(v) ? nlohmann::json("infinite") : nlohmann::json(v); };
+  // The bounds the true value is known to lie within (equal to the value when it is exact).
+  return {{"min", one(r[0].value)},
+          {"max", one(r[1].value)},
+          {"bounds", {{"min", {one(r[0].lower), one(r[0].upper)}}, {"max", {one(r[1].lower), one(r[1].upper)}}}},
+          {"method", r[0].method},
+          {"methods", {{"min", r[0].method}, {"max", r[1].method}}}};
+}
+
+// The model's reachable states outgrew --max-states: each property estimated from simulated runs of
+// the IR (statistical.hpp), printed as an estimate with its bands, never as the exact figures.
+int analyzeBySampling(const AnalyzeOptions& options, const ir::Model& model, const std::vector<std::size_t>& asked,
+                      const std::vector<double>& reward, const std::string& counting) {
+  const std::string& input = options.model.input;
+  std::cerr << fmt::format("analyze: more than {} reachable states; estimating from {} simulated runs\n", options.maxStates, options.runs);
+  std::vector<char> unit(model.rules.size());
+  for (std::size_t r = 0; r < model.rules.size(); ++r) unit[r] = reward[r] > 0 ? 1 : 0;
+  nlohmann::json out{{"schemaVersion", 1}, {"tool", std::string("semo-verify ") + kToolVersion}, {"model", input}, {"reward", counting},
+                     {"statistical", {{"runs", options.runs}, {"seed", options.seed}, {"confidence", 0.95}}}, {"properties", nlohmann::json::array()}};
+  if (!options.json) {
+    std::cout << "model:       " << input << " (" << model.variables.size() << " variables, " << model.rules.size() << " rules)\n";
+    std::cout << "markov:      more than " << options.maxStates << " reachable states: ESTIMATED from " << options.runs << " simulated runs\n";
+    std::cout << "counting:    " << counting << "\n";
+  }
+  std::vector<ChartSeries> series;
+  for (std::size_t p : asked) {
+    const ir::Property& property = model.properties[p];
+    checker::SamplingOptions sampling{.runs = options.runs, .seed = options.seed, .horizon = options.rounds, .withinSteps = true};
+    sampling.progress = [&](std::size_t done) { std::cerr << fmt::format("analyze: {}: {} of {} runs\n", property.name, done, options.runs); };
+    const checker::SampledAnswer a = checker::sampleRuns(model, property.formula.args[0].atom, unit, sampling);
+    const std::string target = ir::toText(model, property.formula.args[0].atom);
+    const nlohmann::json mean = a.unfinished == 0 ? nlohmann::json(a.meanUnits) : nlohmann::json("not estimated");
+    out["properties"].push_back({{"name", property.name}, {"target", target}, {"within", a.within}, {"withinBand", a.band},
+                                 {"expected", mean}, {"expectedHalfWidth", a.meanHalfWidth}, {"unfinishedRuns", a.unfinished},
+                                 {"schedulerDrawn", a.scheduled}, {"method", a.method}});
+    series.push_back({property.name + fmt::format(" (estimated +-{:.3f})", a.band), a.within, false});
+    if (options.json) continue;
+    std::cout << "property " << property.name << ": eventually {" << target << "}\n";
+    std::cout << "  estimate:       " << a.method << "\n";
+    std::cout << "  expected:       "
+              << (a.unfinished == 0 ? fmt::format("{:.6g} +-{:.3g}", a.meanUnits, a.meanHalfWidth)
+                                    : fmt::format("not estimated ({} runs short of the target)", a.unfinished))
+              << "\n";
+    const std::string header = fmt::format("  P(within t steps), each +-{:.4f}:", a.band);
+    std::cout << header;
+    for (std::size_t t = 1; t <= options.rounds; ++t) {
+      if (t > 1 && (t - 1) % 5 == 0) std::cout << "\n" << std::string(header.size(), ' ');
+      std::cout << fmt::format("  {:>3}: {:.6f}", t, a.within[t]);
+    }
+    std::cout << "\n";
+  }
+  if (options.json) std::cout << out.dump(2) << "\n";
+  if (options.svg && !writeAtomically(*options.svg, probabilityChartSvg(series, "P(reached within t steps), estimated - " + input,
+                                                                       "t (steps of the model)"))) {
+    std::cerr << "semo-verify: error: cannot write '" << *options.svg << "'\n";
+    return kBadInput;
+  }
+  return kOk;
 }
 
 }  // namespace
@@ -89,6 +152,14 @@ int runAnalyze(const AnalyzeOptions& options) {
   try {
     chain = checker::buildMarkovModel(model, {.maxStates = options.maxStates});
   } catch (const checker::MarkovError& e) {
+    if (e.tooManyStates && options.runs > 0) {
+      try {
+        return analyzeBySampling(options, model, asked, reward, counting);
+      } catch (const checker::MarkovError& inner) {
+        std::cerr << "semo-verify: error: " << inner.what() << "\n";
+        return kBadInput;
+      }
+    }
     std::cerr << "semo-verify: " << (e.limitReached ? "limit" : "error") << ": " << e.what() << "\n";
     return e.limitReached ? kLimit : kBadInput;
   }
@@ -133,8 +204,8 @@ int runAnalyze(const AnalyzeOptions& options) {
     std::cout << "counting:    " << counting << "\n";
     for (const Answer& a : answers) {
       std::cout << "property " << a.name << ": eventually {" << a.target << "}\n";
-      std::cout << "  P(eventually):  " << range(a.eventually, deterministic) << "  (" << a.eventually[0].method << ")\n";
-      std::cout << "  expected:       " << range(a.expected, deterministic) << "  (" << a.expected[0].method << ")\n";
+      std::cout << "  P(eventually):  " << range(a.eventually, deterministic) << "  (" << methods(a.eventually, deterministic) << ")\n";
+      std::cout << "  expected:       " << range(a.expected, deterministic) << "  (" << methods(a.expected, deterministic) << ")\n";
       std::cout << "  P(within t steps):";
       for (std::size_t t = 1; t <= options.rounds; ++t) {
         if (t > 1 && (t - 1) % 5 == 0) std::cout << "\n                    ";

@@ -32,6 +32,10 @@ struct Item {
   double expected[2] = {0, 0};
   std::string method;
   std::size_t states = 0;
+  // Estimated from simulated runs (the round model outgrew --max-states): every P(within t) within
+  // `band`, each finder's mean within `meanHalfWidth`, at 95 %.
+  bool sampled = false;
+  double band = 0, meanHalfWidth = 0;
 };
 
 // The spread of one knowledge item among `members` (in the team's order), from each of them as the
@@ -45,14 +49,28 @@ Item measure(std::string name, const std::vector<std::string>& members, const st
     if (std::chrono::steady_clock::now() - started > std::chrono::seconds(1)) {
       std::cerr << fmt::format("analyze: {}: from {} ({} of {})\n", item.name, members[first], first + 1, members.size());
     }
+    const checker::SpreadParameters parameters{members.size(), first, *options.lossProb, d.retransmissions};
     checker::SpreadAnswer a;
     try {
-      a = checker::analyzeSpread({members.size(), first, *options.lossProb, d.retransmissions}, options.rounds,
-                                 {.maxStates = options.maxStates});
+      if (!item.sampled) a = checker::analyzeSpread(parameters, options.rounds, {.maxStates = options.maxStates});
     } catch (const checker::MarkovError& e) {
-      throw checker::MarkovError(fmt::format("knowledge {} ({} robots): {}{}", item.name, members.size(), e.what(),
-                                             e.limitReached ? "; --max-states raises the limit" : ""),
-                                 e.limitReached);
+      if (!e.tooManyStates || options.runs == 0) {
+        throw checker::MarkovError(fmt::format("knowledge {} ({} robots): {}{}", item.name, members.size(), e.what(),
+                                               e.tooManyStates ? "; --max-states raises the limit" : ""),
+                                   e.limitReached);
+      }
+      item.sampled = true;  // and for the other finders too: one method per item
+      std::cerr << fmt::format("analyze: {}: the round model has more than {} states; estimating from {} simulated runs per finder\n",
+                               item.name, options.maxStates, options.runs);
+    }
+    if (item.sampled) {
+      const checker::SampledAnswer s = checker::sampleSpread(parameters, {.runs = options.runs, .seed = options.seed, .horizon = options.rounds});
+      a.withinRounds = s.within;
+      a.expectedRounds.value = s.unfinished == 0 ? s.meanUnits : std::numeric_limits<double>::infinity();
+      a.expectedRounds.infinite = s.unfinished != 0;
+      a.expectedRounds.method = s.method;
+      item.band = s.band;
+      item.meanHalfWidth = std::max(item.meanHalfWidth, s.meanHalfWidth);
     }
     item.states = std::max(item.states, a.states);
     item.method = a.expectedRounds.method;
@@ -159,6 +177,10 @@ int analyzeMission(const AnalyzeOptions& given, const BuiltModel& built) {
                                   {"expectedRounds", {{"min", value(i.expected[0])}, {"max", value(i.expected[1])}}},
                                   {"withinRounds", {{"min", i.within[0]}, {"max", i.within[1]}}}, {"method", i.method},
                                   {"byFinder", nlohmann::json::array()}});
+      if (i.sampled) {
+        out["knowledge"].back()["statistical"] = {{"runsPerFinder", options.runs}, {"seed", options.seed}, {"confidence", 0.95},
+                                                  {"withinBand", i.band}, {"expectedHalfWidth", i.meanHalfWidth}};
+      }
       for (const Finder& f : i.finders) {
         out["knowledge"].back()["byFinder"].push_back({{"robot", f.robot}, {"expectedRounds", value(f.expected)}, {"withinRounds", f.within}});
       }
@@ -182,13 +204,17 @@ int analyzeMission(const AnalyzeOptions& given, const BuiltModel& built) {
     std::cout << fmt::format("assumes:     each copy of a message lost with probability {:g} ({}), independently; no crash\n",
                              *options.lossProb, source);
     for (const Item& i : items) {
-      std::cout << fmt::format("knowledge {}: {} robots, a gossip round every {} ms, {} extra cop{} per message ({} states)\n", i.name,
-                               i.robots, i.periodMillis, i.retransmissions, i.retransmissions == 1 ? "y" : "ies", i.states);
+      std::cout << fmt::format("knowledge {}: {} robots, a gossip round every {} ms, {} extra cop{} per message ({})\n", i.name, i.robots,
+                               i.periodMillis, i.retransmissions, i.retransmissions == 1 ? "y" : "ies",
+                               i.sampled ? fmt::format("ESTIMATED from {} simulated runs per finder", options.runs)
+                                         : fmt::format("{} states", i.states));
       std::cout << "  rounds until every robot in the service knows a fact one of them found (min .. max over the finder):\n";
-      std::cout << "  expected:       " << span(i.expected[0], i.expected[1]) << " rounds (" << i.method << ")\n";
-      std::cout << "  P(within t rounds):";
+      std::cout << "  expected:       " << span(i.expected[0], i.expected[1]) << " rounds"
+                << (i.sampled ? fmt::format(" +-{:.3g}", i.meanHalfWidth) : std::string()) << " (" << i.method << ")\n";
+      const std::string header = i.sampled ? fmt::format("  P(within t rounds), each +-{:.4f}:", i.band) : std::string("  P(within t rounds):");
+      std::cout << header;
       for (std::size_t t = 1; t < i.within[0].size(); ++t) {
-        if (t > 1 && (t - 1) % 4 == 0) std::cout << "\n                     ";
+        if (t > 1 && (t - 1) % 4 == 0) std::cout << "\n" << std::string(header.size(), ' ');
         const std::string lo = fmt::format("{:.6f}", i.within[0][t]), hi = fmt::format("{:.6f}", i.within[1][t]);
         std::cout << fmt::format("  {:>3}: {}", t, lo == hi ? hi : lo + ".." + hi);
       }
@@ -199,8 +225,9 @@ int analyzeMission(const AnalyzeOptions& given, const BuiltModel& built) {
   if (options.svg && !items.empty()) {
     std::vector<ChartSeries> series;
     for (const Item& i : items) {
-      series.push_back({i.name + " (min)", i.within[0], true});
-      series.push_back({i.name + " (max)", i.within[1], false});
+      const std::string estimated = i.sampled ? fmt::format(", estimated +-{:.3f}", i.band) : "";
+      series.push_back({i.name + " (min" + estimated + ")", i.within[0], true});
+      series.push_back({i.name + " (max" + estimated + ")", i.within[1], false});
     }
     const std::string title = fmt::format("P(every robot knows within t rounds), loss {:g} - {}", *options.lossProb, options.model.input);
     if (!writeAtomically(*options.svg, probabilityChartSvg(series, title, "t (gossip rounds)"))) {

@@ -127,6 +127,8 @@ struct AnalyzeOptions {
   std::optional<std::string> svg;
   std::optional<double> lossProb;       // a mission: the probability that one copy of a message is lost
   double seconds = 60;                  // a mission: the horizon of the heartbeat questions
+  std::size_t runs = 10'000;            // simulated runs where a round model outgrows --max-states (0: none)
+  std::uint64_t seed = 1;               // of those runs
 };
 
 struct ReplayOptions {

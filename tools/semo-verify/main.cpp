@@ -198,6 +198,11 @@ int main(int argc, char** argv) {
         analyze.seconds = *s;
       },
       "A mission: the horizon of the heartbeat questions, e.g. 60s, 2min (default 60s)");
+  analyzeCmd->add_option("--runs", analyze.runs,
+                         "Where the reachable states (of a model, or of a mission's round model) outgrow --max-states, estimate from this many simulated runs "
+                         "instead, with confidence bands (default 10000; 0: give up with exit 3)")
+      ->check(CLI::Range(0, 100'000'000));
+  analyzeCmd->add_option("--seed", analyze.seed, "Seed of those runs (default 1): the same seed gives the same estimate");
   analyzeCmd->add_flag("--json", analyze.json, "Print the results as JSON");
   analyzeCmd->add_option("--svg", analyze.svg, "Write a chart of P(within t) against t");
 

@@ -37,8 +37,10 @@ struct MarkovLimits {
 
 // A model too large for the limits (limitReached), or a step that leaves a declared range.
 struct MarkovError : std::runtime_error {
-  explicit MarkovError(const std::string& what, bool limit = false) : std::runtime_error(what), limitReached(limit) {}
+  explicit MarkovError(const std::string& what, bool limit = false, bool states = false)
+      : std::runtime_error(what), limitReached(limit), tooManyStates(states) {}
   bool limitReached = false;
+  bool tooManyStates = false;  // the limit reached is MarkovLimits::maxStates (simulated runs may still answer)
 };
 
 // The reachable states and their actions, breadth-first from the initial state.
@@ -57,11 +59,22 @@ std::vector<double> boundedReachability(const MarkovModel& m, const std::vector<
 struct QuantitativeResult {
   double value = 0;
   bool infinite = false;  // an expectation: the target is missed with positive probability
-  std::string method;     // how it was computed, and to what precision
+  // The true value lies in [lower, upper]: both equal `value` for an exact answer; an interval
+  // iteration's bounds; a value iteration from below gives lower = value and upper = infinity.
+  double lower = 0, upper = 0;
+  std::string method;  // how it was computed, and to what precision
 };
 
-// P(target eventually reached) from the initial state.
-QuantitativeResult reachability(const MarkovModel& m, const std::vector<char>& target, Optimum optimum = Optimum::Max);
+// P(target eventually reached) from the initial state. On an MDP by interval iteration: a lower
+// and an upper bound iterated until they are within `precision` of each other (the end components
+// collapsed for Max, so that the upper bound converges); the answer is their midpoint.
+QuantitativeResult reachability(const MarkovModel& m, const std::vector<char>& target, Optimum optimum = Optimum::Max,
+                                double precision = 1e-9);
+
+// The maximal end components among the states `within` marks: per state, its component's number
+// (-1 for none). A component is a set of states and actions that a scheduler can keep to for ever
+// with probability 1, each state reaching every other; a state with a self-loop action is one.
+std::vector<std::int64_t> maximalEndComponents(const MarkovModel& m, const std::vector<char>& within);
 
 // The expected total reward until the target is reached, a step of rule r earning rewardOfRule[r]
 // (for example 1 for every rule: the expected number of steps). Infinite where the target is

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "semo/checker/markov.hpp"
+#include "semo/checker/statistical.hpp"
 #include "semo/semantics/ir.hpp"
 
 namespace semo::checker {
@@ -33,6 +34,10 @@ struct SpreadAnswer {
 };
 
 SpreadAnswer analyzeSpread(const SpreadParameters& p, std::size_t horizonRounds, const MarkovLimits& limits = {});
+
+// The same question answered from simulated runs of the same round model (statistical.hpp), for
+// teams whose round model has too many states (it keeps a bit per robot): units are rounds.
+SampledAnswer sampleSpread(const SpreadParameters& p, SamplingOptions options);
 
 // Losses in a row on one link: each period's message lost independently with probability `loss`;
 // the variable `run` counts the losses since the last message that got through, and the target is
