@@ -113,6 +113,12 @@ void printHeartbeats(const Heartbeats& h, double loss) {
   };
   line("{} lost in a row (outside the assumption):", h.burst + 1, h.outside);
   line("{} lost in a row (a takeover, the leader alive):", h.takeoverAfter, h.takeover);
+  // Re-election after a crash involves no chance: a crashed leader sends nothing to lose, so every
+  // waiting candidate's silence grows each period, and leaders hear each other without loss.
+  std::cout << fmt::format("  the leader crashed: a candidate waiting in the block all along takes over within {} periods ({} ms),\n"
+                           "    with probability 1 whatever the loss (a crashed leader sends nothing to lose); one whose `others`\n"
+                           "    arm has ended takes over when the block forms again (`simulate --crash` measures that)\n",
+                           h.takeoverAfter, h.takeoverAfter * static_cast<std::size_t>(h.heartbeatMillis));
 }
 
 }  // namespace
@@ -196,7 +202,10 @@ int analyzeMission(const AnalyzeOptions& given, const BuiltModel& built) {
                                      {"heartbeatMillis", h.heartbeatMillis},
                                      {"horizonPeriods", h.horizon},
                                      {"outsideAssumption", run(h.burst + 1, h.outside)},
-                                     {"falseTakeover", run(h.takeoverAfter, h.takeover)}});
+                                     {"falseTakeover", run(h.takeoverAfter, h.takeover)},
+                                     {"reelectionAfterCrash", {{"withinPeriods", h.takeoverAfter},
+                                                               {"withinMillis", h.takeoverAfter * static_cast<std::size_t>(h.heartbeatMillis)},
+                                                               {"probability", 1.0}}}});
     }
     std::cout << out.dump(2) << "\n";
   } else {
