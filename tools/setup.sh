@@ -18,12 +18,23 @@ missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
+step() { printf '\n== %s\n' "$*"; }
+
+# apt's own output goes to a log file: the terminal gets one line, and the log's end if it fails.
+packages_log="setup-packages.log"
+step "packages"
 if [ ${#missing[@]} -gt 0 ]; then
-  echo "== installing: ${missing[*]}"
+  echo "installing ${#missing[@]}: ${missing[*]} (apt's output: $packages_log)"
   sudo=""
   [ "$(id -u)" -eq 0 ] || sudo="sudo"
-  $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+  if ! { $sudo apt-get update -qq && DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"; } \
+      > "$packages_log" 2>&1; then
+    tail -n 30 "$packages_log"
+    echo "tools/setup.sh: installing the packages failed; the whole log is $packages_log" >&2
+    exit 1
+  fi
+else
+  echo "all ${#packages[@]} packages installed"
 fi
 
 build() {  # build DIR [cmake options...]
@@ -36,20 +47,35 @@ scouting=(specs/examples/scouting/scouting.semo --strategy specs/examples/scouti
 
 case "$mode" in
   run)
+    step "build (release, build/)"
     build build -DCMAKE_BUILD_TYPE=Release -DSEMO_BUILD_TESTS=OFF
+    step "lint: the paper's scouting mission"
     ./build/tools/semo-verify lint "${scouting[@]}"
     # The whole scouting model is beyond the explicit engine: --engine auto sees that within its
     # budget and proves the safety properties with Z3 (BMC, k-induction, IC3); the LTL properties
-    # are decided on slices (enumerated, or symbolically when large). mode_agreement stays unknown,
-    # so the result is partial (exit 3) and says so.
-    ./build/tools/semo-verify check "${scouting[@]}" --engine auto || [ $? -eq 3 ]
+    # are decided on slices (enumerated, or symbolically when large).
+    step "check: every property of the mission (--engine auto)"
+    checked=0
+    ./build/tools/semo-verify check "${scouting[@]}" --engine auto || checked=$?
     # Then each robot's dataflow task graph: every scenario consistent and deadlock free, with its
     # schedule, period and buffer bounds proven (Z3).
-    ./build/tools/semo-verify sdf "${scouting[@]}"
+    step "sdf: each robot's task graph"
+    graphs=0
+    ./build/tools/semo-verify sdf "${scouting[@]}" || graphs=$?
+    # check's exit code is passed on (a violation or a partial result is not hidden), then sdf's.
+    meaning=([0]="everything proven" [1]="a property is violated" [2]="bad input" [3]="partial: some property undecided"
+             [4]="the run left the model")
+    step "summary"
+    echo "check: exit $checked (${meaning[$checked]:-unexpected}); sdf: exit $graphs (${meaning[$graphs]:-unexpected})"
+    if [ "$checked" -ne 0 ]; then exit "$checked"; fi
+    exit "$graphs"
     ;;
   test)
+    step "build (release, build/, with the tests)"
     build build -DCMAKE_BUILD_TYPE=Release -DSEMO_BUILD_TESTS=ON
+    step "lint: the paper's scouting mission"
     ./build/tools/semo-verify lint "${scouting[@]}"
+    step "tests (ctest)"
     ctest --test-dir build --output-on-failure -j "$jobs"
     ;;
   sanitize)
@@ -57,14 +83,17 @@ case "$mode" in
     # instead of 14.5 on 2 cores), and -g1 rather than -g: line tables are all a sanitizer report
     # needs, and full debug info made the build take half again as long. The build type stays
     # Debug so that assertions stay on.
+    step "build with AddressSanitizer and UndefinedBehaviorSanitizer (build-sanitize/)"
     build build-sanitize -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1" -DSEMO_SANITIZE=ON -DSEMO_BUILD_TESTS=ON
     # Every test but the few long searches (label `heavy`) and the comparisons with SPIN (label
     # `spin`: their time is SPIN compiling and searching, which no sanitizer looks into; the export
     # they read is sanitized by the e2e export tests). The release run above covers both.
+    step "tests under the sanitizers (ctest -LE 'heavy|spin')"
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
       ctest --test-dir build-sanitize --output-on-failure -j "$jobs" -LE "heavy|spin"
     ;;
   fuzz)
+    step "build the fuzz targets (clang, build-fuzz/)"
     build build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DSEMO_FUZZ=ON
     seconds="${FUZZ_SECONDS:-300}"
     targets=(fuzz_mission_parser fuzz_strategy_reader fuzz_ir_reader fuzz_sdf3_reader fuzz_taskgraph_reader

@@ -94,7 +94,7 @@ int runCheck(const CheckOptions& options) {
   const bool searchedLong = report && (report->safety.seconds >= 1.0 || report->liveness.seconds >= 1.0);
   if (searchedLong && !options.json && isatty(STDERR_FILENO) != 0) std::cerr << "\n";  // after the progress line
   if (options.json) std::cout << reportJson(*report, *built->model, options.model).dump(2) << "\n";
-  else std::cout << reportText(*report, *built->model, options.model.input, options.bmcOnly);
+  else std::cout << reportText(*report, *built->model, options.model.input, options.bmcOnly) << "\n" << resultLine(*report);
   return report->exitCode;
 }
 

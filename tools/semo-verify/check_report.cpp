@@ -108,6 +108,29 @@ std::string reportText(const checker::Report& r, const ir::Model& model, const s
   return out;
 }
 
+std::string resultLine(const checker::Report& r) {
+  std::size_t proven = 0, violated = 0;
+  std::vector<std::string> unknown;
+  for (const PropertyVerdict& p : r.properties) {
+    if (p.kind == Kind::GroupFormation && !r.formation.empty()) continue;  // counted from r.formation below
+    if (p.verdict == checker::Verdict::Proven) ++proven;
+    else if (p.verdict == checker::Verdict::Violated) ++violated;
+    else unknown.push_back(p.name);
+  }
+  for (const checker::FormationVerdict& v : r.formation) (v.holds() ? proven : violated) += 1;
+  std::string out = "result: " + std::to_string(proven) + " proven, " + std::to_string(violated) + " violated, " +
+                    std::to_string(unknown.size()) + " unknown";
+  if (!unknown.empty()) {
+    constexpr std::size_t kNamed = 3;
+    std::vector<std::string> named(unknown.begin(), unknown.begin() + static_cast<std::ptrdiff_t>(std::min(kNamed, unknown.size())));
+    if (unknown.size() > kNamed) named.push_back(std::to_string(unknown.size() - kNamed) + " more");
+    out += " (" + joined(named) + ")";
+  }
+  const char* meaning = r.exitCode == 0 ? "every property proven" : r.exitCode == 1 ? "violated" : "partial";
+  if (r.exitCode == 3 && unknown.empty() && !r.safety.limitReached.empty()) meaning = "partial: the search stopped at a limit";
+  return out + " \u2014 exit " + std::to_string(r.exitCode) + " (" + meaning + ")\n";
+}
+
 nlohmann::json reportJson(const checker::Report& r, const ir::Model& model, const ModelInput& in) {
   using nlohmann::json;
   // Every counterexample names the model it belongs to, so that it can be read back on its own.

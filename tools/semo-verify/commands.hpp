@@ -158,6 +158,8 @@ std::string reportText(const checker::Report& report, const ir::Model& model, co
 nlohmann::json reportJson(const checker::Report& report, const ir::Model& model, const ModelInput& in);
 // Seconds as a stream prints a double ("0.00209936").
 std::string fmtSeconds(double seconds);
+// The closing line of `check`: "result: 6 proven, 0 violated, 4 unknown (a, b, c, 1 more) — exit 3 (partial)".
+std::string resultLine(const checker::Report& report);
 
 // Records in a `check --json` root how the model was built (strategy, robots, overrides).
 void addModelInput(nlohmann::json& root, const ModelInput& in);
