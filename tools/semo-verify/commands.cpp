@@ -70,6 +70,31 @@ int runLint(const LintOptions& options) {
 }
 
 // Writes through a temporary file and renames it, so that a failure never leaves half a file.
+// Text that fits `width` columns: words moved to continuation lines indented by `indent`.
+std::string wrapText(const std::string& line, std::size_t indent, std::size_t width) {
+  if (line.size() <= width) return line + "\n";
+  std::string out, current;
+  std::size_t start = 0;
+  const std::size_t lead = line.find_first_not_of(' ');
+  current = line.substr(0, lead);
+  start = lead;
+  while (start < line.size()) {
+    std::size_t space = line.find(' ', start);
+    if (space == std::string::npos) space = line.size();
+    const std::string word = line.substr(start, space - start);
+    const bool fresh = current.find_first_not_of(' ') == std::string::npos;
+    if (!fresh && current.size() + 1 + word.size() > width) {
+      out += current + "\n";
+      current = std::string(indent, ' ');
+      current += word;
+    } else {
+      current += (fresh ? "" : " ") + word;
+    }
+    start = space + 1;
+  }
+  return out + current + "\n";
+}
+
 bool writeAtomically(const std::string& path, const std::string& text) {
   std::string temporary = path + ".partial";
   {

@@ -85,6 +85,7 @@ struct SdfOptions {
   unsigned proofTimeoutMs = 10'000;
   bool json = false;
   bool buffers = false;  // also the throughput-buffer Pareto front
+  bool verbose = false;  // a mission's or a task graph's: every scenario in full, not a line each
   std::uint64_t maxDistributions = 200'000;
   std::optional<std::string> dotOut, sdf3Out;  // write the graph for Graphviz / in SDF3's format
 };
@@ -175,6 +176,9 @@ std::vector<std::string> teamSourceProblems(const model::MissionModel& mission, 
 
 // Writes through a temporary file and renames it, so that a failure never leaves half a file.
 bool writeAtomically(const std::string& path, const std::string& text);
+// One line of text (no newline in it) within `width` columns, ending in a newline: words that do
+// not fit move to continuation lines indented by `indent`; a word longer than a line stays whole.
+std::string wrapText(const std::string& line, std::size_t indent, std::size_t width = 100);
 
 // No output replaces an input. Each output (its option, for the message, and its path) against each
 // input file, and each file of an input folder (--robots), as std::filesystem::equivalent sees them

@@ -122,6 +122,9 @@ int main(int argc, char** argv) {
   sdfCmd->add_option("--proof-timeout", sdfOptions.proofTimeoutMs, "Give up one Z3 buffer-bound query after this many milliseconds (default 10000)");
   sdfCmd->add_option("--sdf3", sdfOptions.sdf3, "A graph in SDF3's XML format");
   sdfCmd->add_flag("--json", sdfOptions.json, "Print the analysis as JSON");
+  sdfCmd->add_flag("--verbose,-v", sdfOptions.verbose,
+                   "A mission's or task graph's scenarios in full (repetition vector, schedule, bounds with their capacities), "
+                   "not a line each");
   sdfCmd->add_flag("--buffers", sdfOptions.buffers, "Also explore buffer capacities: the throughput-buffer Pareto front");
   sdfCmd->add_option("--dot", sdfOptions.dotOut, "Write the graph for Graphviz to this file");
   sdfCmd->add_option("--write-sdf3", sdfOptions.sdf3Out, "Write the graph in SDF3's format to this file");

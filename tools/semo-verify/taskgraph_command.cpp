@@ -80,7 +80,7 @@ json scenarioJson(const sdf::ScenarioAnalysis& a) {
   return out;
 }
 
-std::string boundsLine(const char* what, const sdf::ChosenBounds& b) {
+std::string boundsLines(const char* what, const sdf::Graph& g, const sdf::ChosenBounds& b) {
   std::size_t deadlocks = 0, slower = 0;
   for (const sdf::ChannelMinimality& m : b.channels) {
     deadlocks += m.outcome == sdf::ChannelMinimality::Outcome::Deadlocks;
@@ -91,41 +91,77 @@ std::string boundsLine(const char* what, const sdf::ChosenBounds& b) {
   line += "; minimal " + std::string(sdf::proofStatusName(b.minimality)) + " (one token less: " + std::to_string(deadlocks) +
           " channels deadlock (Z3)";
   if (slower != 0) line += ", " + std::to_string(slower) + " lose throughput (exact period)";
-  return line + ")\n";
+  std::string capacities = "      capacities:\n";
+  for (std::size_t c = 0; c < g.channels.size(); ++c) {
+    if (!g.channels[c].selfLoop()) capacities += "        " + std::to_string(b.capacities[c]) + "  " + g.channels[c].name + "\n";
+  }
+  return wrapText(line + ")", 6) + capacities;
 }
 
-void printScenario(const sdf::ScenarioAnalysis& a) {
+// Everything known of one scenario (--verbose), or the first line that is not proven.
+struct ScenarioText {
+  std::string verbose;
+  std::string defect;  // empty when sound
+};
+
+ScenarioText scenarioText(const sdf::ScenarioAnalysis& a) {
   const sdf::Graph& g = a.graph;
-  std::cout << "  scenario " << a.scenario << " (" << g.actors.size() << " tasks)\n";
+  ScenarioText out;
+  out.verbose = "  scenario " + a.scenario + " (" + std::to_string(g.actors.size()) + " tasks)\n";
+  auto add = [&](const std::string& line, bool isDefect = false) {
+    out.verbose += wrapText(line, 6);
+    if (isDefect && out.defect.empty()) out.defect = line.substr(line.find_first_not_of(' '));
+  };
   if (!a.repetition.consistent()) {
-    std::cout << "    VIOLATED  consistency  (" << a.repetition.error << ")\n";
-    return;
+    add("    VIOLATED  consistency  (" + a.repetition.error + ")", true);
+    return out;
   }
-  std::cout << "    proven  consistency  (repetition vector:";
-  for (std::size_t i = 0; i < g.actors.size(); ++i) std::cout << " " << g.actors[i].name << " " << a.repetition.firings[i];
-  std::cout << ")\n";
+  std::string repetition = "    proven  consistency  (repetition vector:";
+  for (std::size_t i = 0; i < g.actors.size(); ++i) repetition += " " + g.actors[i].name + " " + std::to_string(a.repetition.firings[i]);
+  add(repetition + ")");
   if (!a.iteration.error.empty()) {
-    std::cout << "    unknown  deadlock_freedom  (" << a.iteration.error << ")\n";
-    return;
+    add("    unknown  deadlock_freedom  (" + a.iteration.error + ")", true);
+    return out;
   }
   if (!a.iteration.deadlockFree) {
-    std::cout << "    VIOLATED  deadlock_freedom  ("
-              << (a.iteration.schedule.empty() ? "no task can fire from the initial tokens"
-                                               : "no task can fire after " + sdf::scheduleText(g, a.iteration.schedule) + ", before the iteration ends")
-              << ")\n";
-    return;
+    add("    VIOLATED  deadlock_freedom  (" +
+            (a.iteration.schedule.empty() ? std::string("no task can fire from the initial tokens")
+                                          : "no task can fire after " + sdf::scheduleText(g, a.iteration.schedule) + ", before the iteration ends") +
+            ")",
+        true);
+    return out;
   }
-  std::cout << "    proven  deadlock_freedom  (schedule: " << sdf::scheduleText(g, a.iteration.schedule) << ")\n";
+  add("    proven  deadlock_freedom  (schedule: " + sdf::scheduleText(g, a.iteration.schedule) + ")");
   if (!a.unbounded.error.empty()) {
-    std::cout << "    period: not computed (" << a.unbounded.error << ")\n";
-    return;
+    add("    unknown  period  (" + a.unbounded.error + ")", true);
+    return out;
   }
-  std::cout << "    period: " << periodText(a.unbounded.period) << " us per iteration with unbounded channels\n";
+  add("    period: " + periodText(a.unbounded.period) + " us per iteration with unbounded channels");
   if (!a.bounds.haveBounds) {
-    std::cout << "    unknown  buffer_bounds  (" << a.bounds.error << ")\n";
-    return;
+    add("    unknown  buffer_bounds  (" + a.bounds.error + ")", true);
+    return out;
   }
-  std::cout << boundsLine("deadlock-free bounds", a.bounds.deadlockFree) << boundsLine("max-throughput bounds", a.bounds.maxThroughput);
+  out.verbose += boundsLines("deadlock-free bounds", g, a.bounds.deadlockFree) + boundsLines("max-throughput bounds", g, a.bounds.maxThroughput);
+  for (const sdf::ChosenBounds* b : {&a.bounds.deadlockFree, &a.bounds.maxThroughput}) {
+    if (out.defect.empty() && b->safety != sdf::ProofStatus::Proven) {
+      out.defect = std::string(b->safety == sdf::ProofStatus::Refuted ? "REFUTED" : "unknown") + "  buffer_bounds  (total " +
+                   std::to_string(b->total) + ": no overflow/underflow " + sdf::proofStatusName(b->safety) + ")";
+    }
+    if (out.defect.empty() && b->minimality != sdf::ProofStatus::Proven) {
+      out.defect = std::string(b->minimality == sdf::ProofStatus::Refuted ? "NOT minimal" : "unknown") + "  buffer_minimality  (total " +
+                   std::to_string(b->total) + ")";
+    }
+  }
+  return out;
+}
+
+// One line per scenario: what was proven and the figures a user needs (the rest under --verbose).
+std::string compactLine(const sdf::ScenarioAnalysis& a, const ScenarioText& t, std::size_t nameWidth) {
+  std::string line = "  " + a.scenario + std::string(nameWidth - a.scenario.size(), ' ') + "  " +
+                     (a.graph.actors.size() < 10 ? " " : "") + std::to_string(a.graph.actors.size()) + " tasks  ";
+  if (!t.defect.empty()) return wrapText(line + t.defect, nameWidth + 14);
+  return line + "proven  period " + periodText(a.unbounded.period) + " us; buffers " + std::to_string(a.bounds.deadlockFree.total) +
+         " at " + periodText(a.bounds.deadlockFree.period) + " us, " + std::to_string(a.bounds.maxThroughput.total) + " at full rate\n";
 }
 
 }  // namespace
@@ -185,6 +221,7 @@ int runTaskGraphs(const SdfOptions& options) {
   checker::Report report;
   checker::addTaskGraphs(report, std::move(graphs), bo);
   json robots = json::array();
+  std::vector<std::pair<std::vector<std::string>, std::string>> texts;  // robots with the same text, and it
   for (const checker::TaskGraphReport& r : report.taskGraphs) {
     const sdf::TaskGraph& g = r.graph;
     const sdf::TaskGraphAnalysis& analysis = r.analysis;
@@ -200,15 +237,41 @@ int runTaskGraphs(const SdfOptions& options) {
                         {"capacities", caps}});
       continue;
     }
-    std::cout << "robot " << g.robot << " (" << g.robotType << ", " << g.team << "): " << g.tasks.size() << " tasks, " << g.channels.size()
-              << " channels, " << g.remotePorts.size() << " remote ports, " << g.scenarios.size() << " scenarios\n";
-    for (const sdf::ScenarioAnalysis& a : analysis.scenarios) printScenario(a);
+    // A robot's text without its name: robots whose texts are the same are printed once.
+    std::string body = g.robotType + ", " + g.team + "): " + std::to_string(g.tasks.size()) + " tasks, " +
+                       std::to_string(g.channels.size()) + " channels, " + std::to_string(g.remotePorts.size()) + " remote ports" +
+                       (options.verbose ? ", " + std::to_string(g.scenarios.size()) + " scenarios" : "") + "\n";
+    std::size_t nameWidth = 0;
+    for (const sdf::ScenarioAnalysis& a : analysis.scenarios) nameWidth = std::max(nameWidth, a.scenario.size());
+    for (const sdf::ScenarioAnalysis& a : analysis.scenarios) {
+      const ScenarioText t = scenarioText(a);
+      body += options.verbose ? t.verbose : compactLine(a, t, nameWidth);
+    }
+    auto same = std::find_if(texts.begin(), texts.end(), [&](const auto& e) { return e.second == body; });
+    if (same != texts.end()) same->first.push_back(g.robot);
+    else texts.push_back({{g.robot}, body});
+  }
+  for (const auto& [names, body] : texts) {
+    std::string all;
+    for (const std::string& n : names) all += (all.empty() ? "" : ", ") + n;
+    const std::size_t firstLine = body.find('\n');
+    std::cout << wrapText((names.size() > 1 ? "robots " : "robot ") + all + (names.size() > 1 ? " (identical graphs; " : " (") +
+                             body.substr(0, firstLine),
+                         6)
+              << body.substr(firstLine + 1);
   }
   // Sound everywhere: 0; a real defect (inconsistent, deadlocking, a bound refuted): 1; else 3.
   if (options.json) {
     std::cout << json{{"robots", robots}, {"assumptions", report.taskGraphAssumptions}, {"exitCode", report.exitCode}}.dump(2) << "\n";
   } else {
-    std::cout << "assumptions: " << report.taskGraphAssumptions << "\n";
+    std::cout << wrapText("assumptions: " + report.taskGraphAssumptions, 13);
+    std::size_t scenarios = 0, sound = 0;
+    for (const checker::TaskGraphReport& r : report.taskGraphs) {
+      for (const sdf::ScenarioAnalysis& a : r.analysis.scenarios) scenarios += 1, sound += a.sound() ? 1 : 0;
+    }
+    const char* meaning = report.exitCode == 0 ? "every scenario proven" : report.exitCode == 1 ? "a defect" : "partial";
+    std::cout << "\nresult: " << sound << " of " << scenarios << " scenarios proven (" << report.taskGraphs.size()
+              << (report.taskGraphs.size() == 1 ? " robot" : " robots") << ") \u2014 exit " << report.exitCode << " (" << meaning << ")\n";
   }
   return report.exitCode;
 }
