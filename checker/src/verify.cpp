@@ -135,6 +135,15 @@ void runSmt(Report& out, const ir::Model& model, const model::MissionModel* miss
       }
     }
     out.formation = checkGroupFormation(m, &budget);
+    if (!options.propertyGlobs.empty()) {
+      std::erase_if(out.formation, [&](const FormationVerdict& v) {
+        const std::string name = "group_formation[" + v.block + "]";
+        for (const std::string& g : options.propertyGlobs) {
+          if (globMatches(g, name) || (g.find('[') == std::string::npos && globMatches(g + "[*]", name))) return false;
+        }
+        return true;
+      });
+    }
     for (const FormationVerdict& v : out.formation) {
       const SourceRange& at = m.groupBlocks[v.blockIndex].at;
       out.formationOrigins.push_back(at.begin.valid() ? sources.path(at.begin.file) + ":" + std::to_string(at.begin.line) + ":" +

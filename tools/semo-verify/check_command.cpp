@@ -53,6 +53,53 @@ std::unique_ptr<BuiltModel> buildModel(const ModelInput& in) {
   return out;
 }
 
+namespace {
+
+// --props FILE: per line a property name or glob, or `check a, b` as in the verify block; `#`
+// starts a comment. A `property` line would need the mission's formula syntax: refused, with its
+// position, pointing at the verify block.
+bool readPropsFile(const std::string& path, std::vector<std::string>& out, SourceManager& sources, DiagnosticEngine& diags) {
+  std::string why;
+  const FileId file = sources.load(path, why);
+  if (file == kNoFile) {
+    diags.error({}, why);
+    return false;
+  }
+  for (std::uint32_t line = 1; line <= sources.lineCount(file); ++line) {
+    std::string text(sources.lineText(file, line));
+    text = text.substr(0, text.find('#'));
+    const std::size_t first = text.find_first_not_of(" \t\r");
+    if (first == std::string::npos) continue;
+    auto at = [&](std::size_t column, std::size_t length) {
+      return SourceRange{{file, line, static_cast<std::uint32_t>(column + 1)}, static_cast<std::uint32_t>(std::max<std::size_t>(1, length))};
+    };
+    const std::string head = text.substr(first, text.find_first_of(" \t", first) - first);
+    if (head == "property" || head == "assume") {
+      diags.error(at(first, head.size()), "a `" + head + "` line belongs in the mission's verify block; --props names properties to decide, "
+                                          "a name or glob per line, or `check a, b`");
+      continue;
+    }
+    std::size_t start = first;
+    bool list = head == "check";
+    if (list) start = first + head.size();
+    // `check` lists are separated by commas; a single name may contain them (group names do).
+    while (start < text.size()) {
+      const std::size_t end = list ? std::min(text.find(',', start), text.size()) : text.size();
+      const std::string item = text.substr(start, end - start);
+      const std::size_t b = item.find_first_not_of(" \t\r"), e = item.find_last_not_of(" \t\r");
+      if (b == std::string::npos) {
+        if (list) diags.error(at(start, 1), "an empty name in a `check` list");
+      } else {
+        out.push_back(item.substr(b, e - b + 1));
+      }
+      start = end + 1;
+    }
+  }
+  return !diags.hasErrors();
+}
+
+}  // namespace
+
 checker::VerifyOptions verifyOptions(const CheckOptions& options) {
   checker::VerifyOptions v;
   v.engine = options.engine == "smt" ? checker::Engine::Smt : options.engine == "auto" ? checker::Engine::Auto : checker::Engine::Explicit;
@@ -86,15 +133,46 @@ int runCheck(const CheckOptions& options) {
   std::unique_ptr<BuiltModel> built = buildModel(options.model);
   if (!built) return kBadInput;
   DiagnosticEngine diags(built->sources);
+  checker::VerifyOptions verify = verifyOptions(options);
+  std::vector<std::string> globs = options.props, selected;
+  if (options.propsFile && !readPropsFile(*options.propsFile, globs, built->sources, diags)) {
+    diags.print(std::cerr);
+    return kBadInput;
+  }
+  if (options.propsFile && globs.empty()) {
+    std::cerr << "semo-verify: error: " << *options.propsFile << " names no property\n";
+    return kBadInput;
+  }
+  if (!globs.empty()) {
+    try {
+      selected = checker::selectProperties(*built->model, globs);
+    } catch (const std::invalid_argument& e) {
+      std::cerr << "semo-verify: error: " << e.what() << "\n";
+      return kBadInput;
+    }
+    verify.propertyGlobs = globs;
+  }
   std::optional<checker::Report> report =
-      checker::verify(*built->model, built->mission ? &*built->mission : nullptr, verifyOptions(options), diags);
+      checker::verify(*built->model, built->mission ? &*built->mission : nullptr, verify, diags);
   diags.sortByPosition();
   diags.print(std::cerr);
   if (!report) return kBadInput;
   const bool searchedLong = report && (report->safety.seconds >= 1.0 || report->liveness.seconds >= 1.0);
   if (searchedLong && !options.json && isatty(STDERR_FILENO) != 0) std::cerr << "\n";  // after the progress line
-  if (options.json) std::cout << reportJson(*report, *built->model, options.model).dump(2) << "\n";
-  else std::cout << reportText(*report, *built->model, options.model.input, options.bmcOnly) << "\n" << resultLine(*report);
+  if (options.json) {
+    nlohmann::json out = reportJson(*report, *built->model, options.model);
+    if (!globs.empty()) out["selection"] = {{"globs", globs}, {"properties", selected}};
+    std::cout << out.dump(2) << "\n";
+  } else {
+    // The selection overrides the verify block's list: said before the verdicts.
+    if (!globs.empty()) {
+      std::string names;
+      for (const std::string& n : selected) names += (names.empty() ? "" : ", ") + n;
+      std::cout << "selected:    " << selected.size() << " propert" << (selected.size() == 1 ? "y" : "ies")
+                << " (--prop/--props, instead of the verify block's list): " << names << "\n";
+    }
+    std::cout << reportText(*report, *built->model, options.model.input, options.bmcOnly) << "\n" << resultLine(*report);
+  }
   return report->exitCode;
 }
 

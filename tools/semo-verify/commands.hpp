@@ -65,6 +65,8 @@ struct CheckOptions {
   std::string engine = "explicit";
   bool bmcOnly = false;        // smt: bounded model checking only, no unbounded proofs
   unsigned smtTimeoutS = 600;  // smt: per solver call (an IC3 run is one); 0: none
+  std::vector<std::string> props;          // --prop: only these properties (globs)
+  std::optional<std::string> propsFile;    // --props: more of them, a line each
 };
 
 struct ExportOptions {

@@ -73,6 +73,12 @@ int main(int argc, char** argv) {
   addModelOptions(checkCmd, check.model);
   addEngineOptions(checkCmd, check);
   checkCmd->add_flag("--json", check.json, "Print the verdicts and counterexamples as JSON (specs/trace.md)");
+  checkCmd->add_option("--prop", check.props,
+                       "Decide only this property (repeatable; a glob: `*` any text, `?` one character, brackets literal; a name "
+                       "without brackets also means its family: --prop unique_leader); overrides the verify block's list");
+  checkCmd->add_option("--props", check.propsFile,
+                       "Decide only the properties this file names: a name or glob per line, or `check a, b` lines as in the verify "
+                       "block; # starts a comment");
 
   semo::cli::EmitOptions emit;
   CLI::App* emitCmd = app.add_subcommand("emit", "Verify the mission, then write one C++ program per robot, a CMake project that builds them "

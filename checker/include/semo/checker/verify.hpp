@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "semo/checker/explicit_search.hpp"
@@ -36,6 +37,9 @@ struct VerifyOptions {
   SmtOptions smt;           // the smt engine (smt.maxDepth is set from limits.maxDepth when that is bounded)
   std::optional<int> crashOverride;  // --crash N: the budget group formation is decided for (smt)
   bool taskGraphs = false;  // generate and analyse every robot's task graph (needs the mission)
+  // --prop: only the group formation verdicts whose names match one of these (all when empty); the
+  // model's own properties are chosen with selectProperties before verify().
+  std::vector<std::string> propertyGlobs;
   sdf::BoundsOptions bounds;
 };
 
@@ -106,6 +110,16 @@ struct Report {
 
 // `mission` may be null (an IR file): then no group formation and no task graphs. nullopt only when
 // the task graphs were asked for and cannot be generated (the reasons are in `diags`).
+// A property name against a glob of --prop: `*` any run of characters, `?` any one; everything
+// else literal, brackets included, so that `unique_leader[*]` means every unique_leader.
+bool globMatches(std::string_view glob, std::string_view name);
+
+// Keeps the invariants and LTL properties (and deadlock_freedom, the model's valid end) whose names
+// match one of `globs` (a glob without `[` also matches the family `glob[...]`, as the verify
+// block's `check unique_leader` does), and returns the names kept. A glob that matches none of them is a
+// std::invalid_argument naming the model's properties.
+std::vector<std::string> selectProperties(ir::Model& model, const std::vector<std::string>& globs);
+
 std::optional<Report> verify(const ir::Model& model, const model::MissionModel* mission, const VerifyOptions& options,
                              DiagnosticEngine& diags);
 
