@@ -54,11 +54,21 @@ std::int32_t Translator::crashBudget(Index team) const {
 void Translator::assumptions() {
   losePublish_ = m_.assumptions.losePublish;
   loseEvents_ = m_.assumptions.loseEvents;
+  // --loss: one kind or a comma-separated list of them (`events,publish`).
+  auto overridden = [this](const char* kind) {
+    const std::string& list = *options_.lossOverride;
+    for (std::size_t start = 0; start <= list.size();) {
+      const std::size_t end = std::min(list.find(',', start), list.size());
+      const std::string k = list.substr(start, end - start);
+      if (k == kind || k == "all") return true;
+      start = end + 1;
+    }
+    return false;
+  };
   if (options_.lossOverride) {
-    const std::string& k = *options_.lossOverride;
-    losePublish_ = k == "publish" || k == "all";
-    loseEvents_ = k == "events" || k == "all";
-    loseHeartbeats_ = k == "heartbeats" || k == "all";
+    losePublish_ = overridden("publish");
+    loseEvents_ = overridden("events");
+    loseHeartbeats_ = overridden("heartbeats");
   } else {
     loseHeartbeats_ = m_.assumptions.loseHeartbeats;
   }
@@ -72,8 +82,7 @@ void Translator::assumptions() {
                               std::to_string(m_.assumptions.lossBurst) + " in a row)";
   if (loseEvents_) loss += std::string(loss.empty() ? "" : ", ") + "events";
   // Knowledge gossip is modelled as merges that may happen late or never, so lost gossip is always covered.
-  bool loseKnowledge = options_.lossOverride ? (*options_.lossOverride == "knowledge" || *options_.lossOverride == "all")
-                                             : m_.assumptions.loseKnowledge;
+  bool loseKnowledge = options_.lossOverride ? overridden("knowledge") : m_.assumptions.loseKnowledge;
   if (loseKnowledge) loss += std::string(loss.empty() ? "" : ", ") + "knowledge";
   loseKnowledge_ = loseKnowledge;
   fairLoss_ = options_.fairLossOverride.value_or(m_.assumptions.fairLoss);

@@ -25,14 +25,31 @@ int main(int argc, char** argv) {
                       "Folder of URDF files; strategy URDF paths are resolved against it (default: the strategy's folder)");
   lintCmd->add_flag("--warnings-as-errors,-W", lint.warningsAsErrors, "Exit 2 when there is any warning");
 
-  auto addModelOptions = [](CLI::App* cmd, semo::cli::ModelInput& in) {
+  // --loss: a kind, or a comma-separated list of kinds (none and all stand alone).
+  const CLI::Validator lossKinds(
+      [](std::string& text) -> std::string {
+        if (text == "none" || text == "all") return {};
+        for (std::size_t start = 0; start <= text.size();) {
+          const std::size_t end = std::min(text.find(',', start), text.size());
+          const std::string kind = text.substr(start, end - start);
+          if (kind != "publish" && kind != "events" && kind != "knowledge" && kind != "heartbeats") {
+            return "'" + kind + "' is not a kind of message that may be lost (publish, events, knowledge, heartbeats; or none, all alone)";
+          }
+          start = end + 1;
+        }
+        return {};
+      },
+      "KIND[,KIND...]");
+  auto addModelOptions = [&lossKinds](CLI::App* cmd, semo::cli::ModelInput& in) {
     cmd->add_option("input", in.input, "Mission file (.semo, with --strategy) or IR file (.ir)")->required();
     cmd->add_option("--strategy,-s", in.strategy, "Strategy file (.xml), for a mission");
     cmd->add_option("--robots,-r", in.robotsDir, "Folder of URDF files");
     cmd->add_option("--crash", in.crash, "Up to N robots of each team may crash (overrides the verify block)")
         ->check(CLI::Range(0, 100000));
-    cmd->add_option("--loss", in.loss, "Which messages may be lost (overrides the verify block)")
-        ->check(CLI::IsMember({"none", "publish", "events", "knowledge", "heartbeats", "all"}));
+    cmd->add_option("--loss", in.loss,
+                    "Which messages may be lost: none, all, or publish, events, knowledge, heartbeats, one or a list (events,publish); "
+                    "overrides the verify block")
+        ->check(lossKinds);
     auto* fair = cmd->add_flag_callback("--fair-loss", [&in] { in.fairLoss = true; },
                                         "A message sent again and again eventually gets through (overrides the verify block)");
     auto* unfair = cmd->add_flag_callback("--unfair-loss", [&in] { in.fairLoss = false; },
@@ -172,8 +189,7 @@ int main(int argc, char** argv) {
   replayCmd->add_option("--strategy,-s", replay.model.strategy, "Strategy file (default: the trace file's \"strategy\")");
   replayCmd->add_option("--robots,-r", replay.model.robotsDir, "Folder of URDF files (default: the trace file's \"robots\")");
   replayCmd->add_option("--crash", replay.model.crash, "As given to check (default: as the trace file records)")->check(CLI::Range(0, 100000));
-  replayCmd->add_option("--loss", replay.model.loss, "As given to check (default: as the trace file records)")
-      ->check(CLI::IsMember({"none", "publish", "events", "knowledge", "heartbeats", "all"}));
+  replayCmd->add_option("--loss", replay.model.loss, "As given to check (default: as the trace file records)")->check(lossKinds);
   replayCmd->add_option("--property,-p", replay.property, "Which counterexample of the file (default: the first violated property)");
   replayCmd->add_option("--world,-w", replay.world, "World file for the picture (default: MISSION.world.json when there is one)");
   replayCmd->add_option("--loops", replay.loops, "A lasso's loop is taken this many times (default 3)");

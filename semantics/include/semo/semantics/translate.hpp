@@ -12,7 +12,7 @@ namespace semo {
 
 struct TranslationOptions {
   std::optional<int> crashOverride;         // --crash N: every team may lose up to N robots
-  std::optional<std::string> lossOverride;  // --loss none|publish|events|knowledge|heartbeats|all
+  std::optional<std::string> lossOverride;  // --loss none|publish|events|knowledge|heartbeats|all, or a list: events,publish
   std::optional<bool> fairLossOverride;     // --fair-loss / --unfair-loss
 };
 
