@@ -143,6 +143,12 @@ int runCheck(const CheckOptions& options) {
     std::cerr << "semo-verify: error: " << *options.propsFile << " names no property\n";
     return kBadInput;
   }
+  if (options.traceOut) {
+    std::vector<std::string> inputs = filesRead(built->sources);
+    inputs.insert(inputs.end(), {options.model.input, options.model.strategy.value_or(""), options.model.robotsDir.value_or(""),
+                                 options.propsFile.value_or("")});
+    if (!outputsSpareInputs({{"--trace-out", *options.traceOut}}, inputs)) return kBadInput;
+  }
   if (!globs.empty()) {
     try {
       selected = checker::selectProperties(*built->model, globs);
@@ -159,10 +165,16 @@ int runCheck(const CheckOptions& options) {
   if (!report) return kBadInput;
   const bool searchedLong = report && (report->safety.seconds >= 1.0 || report->liveness.seconds >= 1.0);
   if (searchedLong && !options.json && isatty(STDERR_FILENO) != 0) std::cerr << "\n";  // after the progress line
+  nlohmann::json json = reportJson(*report, *built->model, options.model);
+  if (!globs.empty()) json["selection"] = {{"globs", globs}, {"properties", selected}};
+  // --trace-out keeps what --json prints (verdicts and counterexamples, specs/trace.md) in a file,
+  // for `show` and `replay`, whatever the text on the terminal.
+  if (options.traceOut && !writeAtomically(*options.traceOut, json.dump(2) + "\n")) {
+    std::cerr << "semo-verify: error: cannot write '" << *options.traceOut << "'\n";
+    return kBadInput;
+  }
   if (options.json) {
-    nlohmann::json out = reportJson(*report, *built->model, options.model);
-    if (!globs.empty()) out["selection"] = {{"globs", globs}, {"properties", selected}};
-    std::cout << out.dump(2) << "\n";
+    std::cout << json.dump(2) << "\n";
   } else {
     // The selection overrides the verify block's list: said before the verdicts.
     if (!globs.empty()) {

@@ -187,7 +187,8 @@ nlohmann::json reportJson(const checker::Report& r, const ir::Model& model, cons
     if (p.counterexample) jp["counterexample"] = traceJson(*p.counterexample);
     props.push_back(jp);
   }
-  json root = {{"input", in.input}, {"assumptions", r.assumptions}, {"complete", s.complete}, {"seconds", s.seconds},
+  json root = {{"schemaVersion", 1}, {"tool", std::string("semo-verify ") + kToolVersion},
+               {"input", in.input}, {"assumptions", r.assumptions}, {"complete", s.complete}, {"seconds", s.seconds},
                {"properties", props}, {"exitCode", r.exitCode}, {"modelFingerprint", r.modelFingerprint}};
   addModelInput(root, in);  // what `replay` needs to build the same model again
   if (!r.engineReason.empty()) root["engineChoice"] = r.engineReason;

@@ -34,6 +34,42 @@ void addModelInput(nlohmann::json& root, const ModelInput& in) {
   if (!overrides.empty()) root["modelOptions"] = overrides;
 }
 
+// Fills what the command line left open from the trace file's header (a `check --json` root).
+// Returns an error in words, or "".
+std::string modelInputFromTrace(const nlohmann::json& root, ModelInput& in) {
+  if (!root.is_object()) return {};
+  auto text = [&](const char* key, std::optional<std::string>& into) -> std::string {
+    if (!root.contains(key) || into) return {};
+    if (!root[key].is_string()) return std::string("\"") + key + "\" must be a string";
+    into = root[key].get<std::string>();
+    return {};
+  };
+  std::optional<std::string> input;
+  if (in.input.empty()) {
+    if (std::string e = text("input", input); !e.empty()) return e;
+    if (input) in.input = *input;
+  }
+  if (std::string e = text("strategy", in.strategy); !e.empty()) return e;
+  if (std::string e = text("robots", in.robotsDir); !e.empty()) return e;
+  if (root.contains("modelOptions")) {
+    const nlohmann::json& o = root["modelOptions"];
+    if (!o.is_object()) return "\"modelOptions\" must be an object";
+    if (o.contains("crash") && !in.crash) {
+      if (!o["crash"].is_number_integer() || o["crash"].get<std::int64_t>() < 0 || o["crash"].get<std::int64_t>() > 100000) return "\"modelOptions/crash\" must be a count";
+      in.crash = o["crash"].get<int>();
+    }
+    if (o.contains("loss") && !in.loss) {
+      if (!o["loss"].is_string()) return "\"modelOptions/loss\" must be a string";
+      in.loss = o["loss"].get<std::string>();
+    }
+    if (o.contains("fairLoss") && !in.fairLoss) {
+      if (!o["fairLoss"].is_boolean()) return "\"modelOptions/fairLoss\" must be true or false";
+      in.fairLoss = o["fairLoss"].get<bool>();
+    }
+  }
+  return {};
+}
+
 int runParse(const ParseOptions& options) {
   SourceManager sources;
   DiagnosticEngine diags(sources);

@@ -64,6 +64,7 @@ struct CheckOptions {
   bool json = false;
   std::string engine = "explicit";
   bool bmcOnly = false;        // smt: bounded model checking only, no unbounded proofs
+  std::optional<std::string> traceOut;  // --trace-out: the verdicts and counterexamples as JSON, kept
   unsigned smtTimeoutS = 600;  // smt: per solver call (an IC3 run is one); 0: none
   std::vector<std::string> props;          // --prop: only these properties (globs)
   std::optional<std::string> propsFile;    // --props: more of them, a line each
@@ -133,6 +134,20 @@ struct AnalyzeOptions {
   std::size_t runs = 10'000;            // simulated runs where a round model outgrows --max-states (0: none)
   std::uint64_t seed = 1;               // of those runs
 };
+
+// Fills what the command line left open (input, strategy, robots, overrides) from a trace file's
+// header (a `check --json` root). Returns an error in words, or "".
+std::string modelInputFromTrace(const nlohmann::json& root, ModelInput& in);
+
+struct ShowOptions {
+  std::string trace;                       // a `check --json` or `check --trace-out` file
+  ModelInput model;                        // empty fields: as the trace file records them
+  std::optional<std::string> property;     // which counterexample (default: the first)
+  std::optional<std::string> robot;        // only this robot's steps (the others counted)
+  bool fullState = false;                  // every variable after each step
+  bool checkFingerprint = true;
+};
+int runShow(const ShowOptions& options);
 
 struct ReplayOptions {
   std::string trace;                 // a `check --json` output, or one counterexample object

@@ -90,12 +90,29 @@ int main(int argc, char** argv) {
   addModelOptions(checkCmd, check.model);
   addEngineOptions(checkCmd, check);
   checkCmd->add_flag("--json", check.json, "Print the verdicts and counterexamples as JSON (specs/trace.md)");
+  checkCmd->add_option("--trace-out", check.traceOut,
+                       "Also write the verdicts and counterexamples as JSON (what --json prints, specs/trace.md) to this file, for "
+                       "`show` and `replay`");
   checkCmd->add_option("--prop", check.props,
                        "Decide only this property (repeatable; a glob: `*` any text, `?` one character, brackets literal; a name "
                        "without brackets also means its family: --prop unique_leader); overrides the verify block's list");
   checkCmd->add_option("--props", check.propsFile,
                        "Decide only the properties this file names: a name or glob per line, or `check a, b` lines as in the verify "
                        "block; # starts a comment");
+
+  semo::cli::ShowOptions show;
+  CLI::App* showCmd = app.add_subcommand("show", "Print a counterexample of `check --json` or `check --trace-out` again, as check prints it, "
+                                                 "for one robot, or with every variable after each step");
+  showCmd->add_option("trace", show.trace, "A `check --json` / `--trace-out` file")->required();
+  showCmd->add_option("mission", show.model.input, "Mission or IR file (default: the trace file's \"input\")");
+  showCmd->add_option("--strategy,-s", show.model.strategy, "Strategy file (default: the trace file's)");
+  showCmd->add_option("--robots,-r", show.model.robotsDir, "Folder of URDF files (default: the trace file's)");
+  showCmd->add_option("--property,-p", show.property, "Which counterexample (default: the first violated property)");
+  showCmd->add_option("--robot", show.robot, "Only this robot's steps; the others' are counted between them");
+  showCmd->add_flag("--full-state", show.fullState, "Every variable after each step, not only those the step changed");
+  showCmd->add_flag_callback("--no-fingerprint", [&show] { show.checkFingerprint = false; },
+                             "Read the trace although the model's fingerprint differs from the file's (the same mission read through "
+                             "another path)");
 
   semo::cli::EmitOptions emit;
   CLI::App* emitCmd = app.add_subcommand("emit", "Verify the mission, then write one C++ program per robot, a CMake project that builds them "
@@ -273,6 +290,7 @@ int main(int argc, char** argv) {
   }
   if (*emitCmd) return semo::cli::runEmit(emit);
   if (*certifyCmd) return semo::cli::runCertify(certify);
+  if (*showCmd) return semo::cli::runShow(show);
   if (*sdfCmd) {
     const int inputs = (sdfOptions.mission ? 1 : 0) + (sdfOptions.graphJson ? 1 : 0) + (sdfOptions.sdf3.empty() ? 0 : 1);
     if (inputs != 1) {
