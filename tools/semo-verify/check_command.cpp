@@ -143,11 +143,15 @@ int runCheck(const CheckOptions& options) {
     std::cerr << "semo-verify: error: " << *options.propsFile << " names no property\n";
     return kBadInput;
   }
-  if (options.traceOut) {
+  std::vector<Output> outputs;
+  if (options.traceOut) outputs.push_back({"--trace-out", *options.traceOut});
+  if (options.junit) outputs.push_back({"--junit", *options.junit});
+  if (options.sarif) outputs.push_back({"--sarif", *options.sarif});
+  if (!outputs.empty()) {
     std::vector<std::string> inputs = filesRead(built->sources);
     inputs.insert(inputs.end(), {options.model.input, options.model.strategy.value_or(""), options.model.robotsDir.value_or(""),
                                  options.propsFile.value_or("")});
-    if (!outputsSpareInputs({{"--trace-out", *options.traceOut}}, inputs)) return kBadInput;
+    if (!outputsSpareInputs(outputs, inputs)) return kBadInput;
   }
   if (!globs.empty()) {
     try {
@@ -169,9 +173,13 @@ int runCheck(const CheckOptions& options) {
   if (!globs.empty()) json["selection"] = {{"globs", globs}, {"properties", selected}};
   // --trace-out keeps what --json prints (verdicts and counterexamples, specs/trace.md) in a file,
   // for `show` and `replay`, whatever the text on the terminal.
-  if (options.traceOut && !writeAtomically(*options.traceOut, json.dump(2) + "\n")) {
-    std::cerr << "semo-verify: error: cannot write '" << *options.traceOut << "'\n";
-    return kBadInput;
+  for (const auto& [path, text] : {std::pair{options.traceOut, options.traceOut ? json.dump(2) + "\n" : std::string()},
+                                   std::pair{options.junit, options.junit ? junitXml(*report, *built->model, options.model.input) : std::string()},
+                                   std::pair{options.sarif, options.sarif ? checkSarif(*report, *built->model) : std::string()}}) {
+    if (path && !writeAtomically(*path, text)) {
+      std::cerr << "semo-verify: error: cannot write '" << *path << "'\n";
+      return kBadInput;
+    }
   }
   if (options.json) {
     std::cout << json.dump(2) << "\n";

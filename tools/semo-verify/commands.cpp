@@ -95,9 +95,43 @@ int runLint(const LintOptions& options) {
   std::optional<model::MissionModel> model =
       loadMission({options.mission, options.strategy, options.robotsDir}, sources, diags);
   diags.sortByPosition();
+  if (options.sarif) {
+    std::vector<std::string> inputs = filesRead(sources);
+    inputs.insert(inputs.end(), {options.mission, options.strategy, options.robotsDir.value_or("")});
+    if (!outputsSpareInputs({{"--sarif", *options.sarif}}, inputs)) return kBadInput;
+    if (!writeAtomically(*options.sarif, diagnosticsSarif(sources, diags))) {
+      std::cerr << "semo-verify: error: cannot write '" << *options.sarif << "'\n";
+      return kBadInput;
+    }
+  }
+  const bool failed = !model || (options.warningsAsErrors && diags.warningCount() > 0);
+  if (options.json) {
+    auto diagnosticJson = [&sources](const Diagnostic& d) {
+      nlohmann::json one = {{"severity", d.severity == Severity::Error ? "error" : d.severity == Severity::Warning ? "warning" : "note"},
+                            {"message", d.message}};
+      if (d.range.begin.valid()) one["file"] = sources.path(d.range.begin.file);
+      if (d.range.begin.hasPosition()) one["line"] = d.range.begin.line, one["column"] = d.range.begin.column, one["length"] = d.range.length;
+      return one;
+    };
+    nlohmann::json list = nlohmann::json::array();
+    for (const Diagnostic& d : diags.diagnostics()) {
+      nlohmann::json one = diagnosticJson(d);
+      for (const Diagnostic& n : d.notes) one["notes"].push_back(diagnosticJson(n));
+      list.push_back(std::move(one));
+    }
+    nlohmann::json out = {{"schemaVersion", 1}, {"tool", std::string("semo-verify ") + kToolVersion}, {"input", options.mission},
+                          {"strategy", options.strategy}, {"diagnostics", list}, {"errors", diags.errorCount()},
+                          {"warnings", diags.warningCount()}, {"exitCode", failed ? kBadInput : kOk}};
+    if (model) {
+      out["summary"] = {{"teams", model->teams.size()}, {"robots", model->robots.size()}, {"services", model->services.size()},
+                        {"modes", model->modes.size()}, {"groupBlocks", model->groupBlocks.size()}, {"robotTypes", model->catalog.types().size()}};
+    }
+    std::cout << out.dump(2) << "\n";
+    return failed ? kBadInput : kOk;
+  }
   diags.print(std::cerr);
   printSummaryLine(diags);
-  if (!model || (options.warningsAsErrors && diags.warningCount() > 0)) return kBadInput;
+  if (failed) return kBadInput;
   std::cout << options.mission << ": ok: " << plural(model->teams.size(), "team") << ", "
             << plural(model->robots.size(), "robot") << ", " << plural(model->services.size(), "service") << ", "
             << plural(model->modes.size(), "mode") << ", " << plural(model->groupBlocks.size(), "group block") << ", "

@@ -39,6 +39,8 @@ struct LintOptions {
   std::string strategy;
   std::optional<std::string> robotsDir;
   bool warningsAsErrors = false;
+  bool json = false;                  // the diagnostics as JSON on stdout
+  std::optional<std::string> sarif;   // and as SARIF 2.1.0 in this file
 };
 
 struct ModelInput {
@@ -65,6 +67,7 @@ struct CheckOptions {
   std::string engine = "explicit";
   bool bmcOnly = false;        // smt: bounded model checking only, no unbounded proofs
   std::optional<std::string> traceOut;  // --trace-out: the verdicts and counterexamples as JSON, kept
+  std::optional<std::string> junit, sarif;  // the verdicts for CI: JUnit XML, SARIF 2.1.0
   unsigned smtTimeoutS = 600;  // smt: per solver call (an IC3 run is one); 0: none
   std::vector<std::string> props;          // --prop: only these properties (globs)
   std::optional<std::string> propsFile;    // --props: more of them, a line each
@@ -176,6 +179,11 @@ std::string reportText(const checker::Report& report, const ir::Model& model, co
 nlohmann::json reportJson(const checker::Report& report, const ir::Model& model, const ModelInput& in);
 // Seconds as a stream prints a double ("0.00209936").
 std::string fmtSeconds(double seconds);
+// For CI (check_formats.cpp): JUnit XML (a test case per property), SARIF 2.1.0 of the verdicts
+// (violations and unknowns with their places, a counterexample as a code flow), and of diagnostics.
+std::string junitXml(const checker::Report& report, const ir::Model& model, const std::string& input);
+std::string checkSarif(const checker::Report& report, const ir::Model& model);
+std::string diagnosticsSarif(const SourceManager& sources, const DiagnosticEngine& diags);
 // The closing line of `check`: "result: 6 proven, 0 violated, 4 unknown (a, b, c, 1 more) — exit 3 (partial)".
 std::string resultLine(const checker::Report& report);
 

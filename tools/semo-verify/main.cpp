@@ -24,6 +24,8 @@ int main(int argc, char** argv) {
   lintCmd->add_option("--robots,-r", lint.robotsDir,
                       "Folder of URDF files; strategy URDF paths are resolved against it (default: the strategy's folder)");
   lintCmd->add_flag("--warnings-as-errors,-W", lint.warningsAsErrors, "Exit 2 when there is any warning");
+  lintCmd->add_flag("--json", lint.json, "Print the diagnostics and the summary as JSON");
+  lintCmd->add_option("--sarif", lint.sarif, "Also write the diagnostics as SARIF 2.1.0 to this file (for code-scanning tools)");
 
   // --loss: a kind, or a comma-separated list of kinds (none and all stand alone).
   const CLI::Validator lossKinds(
@@ -93,6 +95,10 @@ int main(int argc, char** argv) {
   checkCmd->add_option("--trace-out", check.traceOut,
                        "Also write the verdicts and counterexamples as JSON (what --json prints, specs/trace.md) to this file, for "
                        "`show` and `replay`");
+  checkCmd->add_option("--junit", check.junit, "Also write the verdicts as JUnit XML to this file: a test case per property, a violation "
+                                              "a failure with its counterexample, unknown skipped");
+  checkCmd->add_option("--sarif", check.sarif, "Also write violations and unknowns as SARIF 2.1.0 to this file, at their places in the "
+                                              "mission, a counterexample as a code flow");
   checkCmd->add_option("--prop", check.props,
                        "Decide only this property (repeatable; a glob: `*` any text, `?` one character, brackets literal; a name "
                        "without brackets also means its family: --prop unique_leader); overrides the verify block's list");

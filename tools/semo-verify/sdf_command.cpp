@@ -67,7 +67,7 @@ int runSdf(const SdfOptions& options) {
   const int code = sound ? (partial ? kLimit : kOk) : it.error.empty() ? kViolated : kLimit;
 
   if (options.json) {
-    nlohmann::json root = {{"input", options.sdf3}, {"graph", g->name}, {"actors", g->actors.size()},
+    nlohmann::json root = {{"schemaVersion", 1}, {"tool", std::string("semo-verify ") + kToolVersion}, {"input", options.sdf3}, {"graph", g->name}, {"actors", g->actors.size()},
                            {"channels", g->channels.size()}, {"consistent", q.consistent()}, {"exitCode", code}};
     if (!q.consistent()) {
       root["error"] = q.error;

@@ -262,7 +262,13 @@ int runTaskGraphs(const SdfOptions& options) {
   }
   // Sound everywhere: 0; a real defect (inconsistent, deadlocking, a bound refuted): 1; else 3.
   if (options.json) {
-    std::cout << json{{"robots", robots}, {"assumptions", report.taskGraphAssumptions}, {"exitCode", report.exitCode}}.dump(2) << "\n";
+    std::cout << json{{"schemaVersion", 1},
+                      {"tool", std::string("semo-verify ") + kToolVersion},
+                      {"robots", robots},
+                      {"assumptions", report.taskGraphAssumptions},
+                      {"exitCode", report.exitCode}}
+                     .dump(2)
+              << "\n";
   } else {
     std::cout << wrapText("assumptions: " + report.taskGraphAssumptions, 13);
     std::size_t scenarios = 0, sound = 0;
