@@ -72,5 +72,46 @@ TEST(Show, ATraceOfAnotherModelIsRefused) {
   EXPECT_TRUE(r.out.empty()) << r.out;
 }
 
+// The message sequence chart: a lifeline per robot, a row per step, an arrow from the send to the
+// receive, a lost message dashed and crossed, a crash crossed, mode changes boxed, a lasso's loop
+// framed; check --msc and show --msc draw the same bytes; the picture renders.
+TEST(Show, TheSequenceChartDrawsWhatTheTraceSays) {
+  const fs::path dir = workDir("show_msc");
+  const std::string saved = (dir / "cex.json").string(), chart = (dir / "dr.svg").string(), again = (dir / "again.svg").string();
+  ASSERT_EQ(verify("check " + kDoubleReceive + " --trace-out '" + saved + "' --msc '" + chart + "'", dir).exit, 1);
+  ASSERT_EQ(verify("show '" + saved + "' --msc '" + again + "'", dir).exit, 0);
+  const std::string svg = slurp(chart);
+  EXPECT_EQ(svg, slurp(again));
+  EXPECT_EQ(count(svg, "class=\"lifeline\""), 3u) << "base, scout, mapper (no network lane: every step is a robot's)";
+  EXPECT_EQ(count(svg, "class=\"step\""), 11u);
+  EXPECT_EQ(count(svg, "class=\"message\""), 1u) << "scout's report to base";
+  EXPECT_NE(svg.find("<title>ch.Scouts.report</title>"), std::string::npos);
+  EXPECT_EQ(count(svg, ">HOME_MODE</text>"), 2u);
+  EXPECT_NE(svg.find("3. [base] receives report  :24"), std::string::npos);
+  EXPECT_EQ(svg.find("class=\"loop\""), std::string::npos);
+  EXPECT_NE(svg.find("then no rule is enabled: a deadlock"), std::string::npos);
+
+  const std::string lasso = (dir / "lasso.svg").string();
+  ASSERT_EQ(verify("check tests/e2e/ir/retry_delivery_weak.ir --msc '" + lasso + "'", dir).exit, 1);
+  const std::string loop = slurp(lasso);
+  EXPECT_EQ(count(loop, "class=\"message lost\""), 1u) << "sent, then lost by the receiver";
+  EXPECT_EQ(count(loop, "class=\"loop\""), 1u);
+  EXPECT_NE(loop.find("loop: steps 1 to 2 repeat for ever"), std::string::npos);
+
+  const std::string crash = (dir / "crash.svg").string();
+  ASSERT_EQ(verify("check specs/defects/lone_lidar.semo -s specs/defects/strategy.xml --msc '" + crash + "'", dir).exit, 1);
+  EXPECT_EQ(count(slurp(crash), "class=\"crash\""), 1u);
+
+  CliRun none = verify("check specs/examples/swarm/swarm3.semo -s specs/examples/swarm/strategy.xml --msc '" + (dir / "none.svg").string() + "'", dir);
+  EXPECT_EQ(none.exit, 0);
+  EXPECT_FALSE(fs::exists(dir / "none.svg"));
+  EXPECT_NE(none.err.find("no counterexample to draw"), std::string::npos) << none.err;
+
+  if (std::string(SEMO_RSVG_CONVERT).empty()) GTEST_SKIP() << "rsvg-convert (librsvg2-bin) is not installed";
+  const std::string command = "'" SEMO_RSVG_CONVERT "' '" + chart + "' -o '" + (dir / "dr.png").string() + "'";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  EXPECT_GT(fs::file_size(dir / "dr.png"), 10000U);
+}
+
 }  // namespace
 }  // namespace semo::e2e

@@ -8,6 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "sequence_chart.hpp"
+#include "semo/checker/fingerprint.hpp"
 #include "semo/checker/markov.hpp"
 #include "semo/checker/prism_export.hpp"
 #include "semo/checker/promela_export.hpp"
@@ -147,12 +149,16 @@ int runCheck(const CheckOptions& options) {
   if (options.traceOut) outputs.push_back({"--trace-out", *options.traceOut});
   if (options.junit) outputs.push_back({"--junit", *options.junit});
   if (options.sarif) outputs.push_back({"--sarif", *options.sarif});
+  if (options.msc) outputs.push_back({"--msc", *options.msc});
   if (!outputs.empty()) {
     std::vector<std::string> inputs = filesRead(built->sources);
     inputs.insert(inputs.end(), {options.model.input, options.model.strategy.value_or(""), options.model.robotsDir.value_or(""),
                                  options.propsFile.value_or("")});
     if (!outputsSpareInputs(outputs, inputs)) return kBadInput;
   }
+  // The fingerprint names the model, whichever of its properties are decided: a counterexample found
+  // with --prop is read back (show, replay) on the whole model.
+  const std::string fingerprint = checker::modelFingerprint(*built->model);
   if (!globs.empty()) {
     try {
       selected = checker::selectProperties(*built->model, globs);
@@ -167,6 +173,7 @@ int runCheck(const CheckOptions& options) {
   diags.sortByPosition();
   diags.print(std::cerr);
   if (!report) return kBadInput;
+  report->modelFingerprint = fingerprint;
   const bool searchedLong = report && (report->safety.seconds >= 1.0 || report->liveness.seconds >= 1.0);
   if (searchedLong && !options.json && isatty(STDERR_FILENO) != 0) std::cerr << "\n";  // after the progress line
   nlohmann::json json = reportJson(*report, *built->model, options.model);
@@ -178,6 +185,19 @@ int runCheck(const CheckOptions& options) {
                                    std::pair{options.sarif, options.sarif ? checkSarif(*report, *built->model) : std::string()}}) {
     if (path && !writeAtomically(*path, text)) {
       std::cerr << "semo-verify: error: cannot write '" << *path << "'\n";
+      return kBadInput;
+    }
+  }
+  if (options.msc) {
+    const checker::PropertyVerdict* first = nullptr;
+    for (const checker::PropertyVerdict& p : report->properties) {
+      if (p.counterexample && first == nullptr) first = &p;
+    }
+    if (first == nullptr) {
+      std::cerr << "semo-verify: note: no counterexample to draw: " << *options.msc << " not written\n";
+    } else if (!writeAtomically(*options.msc, sequenceChartSvg(*built->model, *first->counterexample,
+                                                               "counterexample for " + first->name + " - " + options.model.input))) {
+      std::cerr << "semo-verify: error: cannot write '" << *options.msc << "'\n";
       return kBadInput;
     }
   }

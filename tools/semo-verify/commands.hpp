@@ -68,6 +68,7 @@ struct CheckOptions {
   bool bmcOnly = false;        // smt: bounded model checking only, no unbounded proofs
   std::optional<std::string> traceOut;  // --trace-out: the verdicts and counterexamples as JSON, kept
   std::optional<std::string> junit, sarif;  // the verdicts for CI: JUnit XML, SARIF 2.1.0
+  std::optional<std::string> msc;           // the first counterexample as a message sequence chart (SVG)
   unsigned smtTimeoutS = 600;  // smt: per solver call (an IC3 run is one); 0: none
   std::vector<std::string> props;          // --prop: only these properties (globs)
   std::optional<std::string> propsFile;    // --props: more of them, a line each
@@ -148,6 +149,7 @@ struct ShowOptions {
   std::optional<std::string> property;     // which counterexample (default: the first)
   std::optional<std::string> robot;        // only this robot's steps (the others counted)
   bool fullState = false;                  // every variable after each step
+  std::optional<std::string> msc;          // also draw it as a message sequence chart (SVG)
   bool checkFingerprint = true;
 };
 int runShow(const ShowOptions& options);

@@ -99,6 +99,7 @@ int main(int argc, char** argv) {
                                               "a failure with its counterexample, unknown skipped");
   checkCmd->add_option("--sarif", check.sarif, "Also write violations and unknowns as SARIF 2.1.0 to this file, at their places in the "
                                               "mission, a counterexample as a code flow");
+  checkCmd->add_option("--msc", check.msc, "Draw the first counterexample as a message sequence chart (SVG) in this file");
   checkCmd->add_option("--prop", check.props,
                        "Decide only this property (repeatable; a glob: `*` any text, `?` one character, brackets literal; a name "
                        "without brackets also means its family: --prop unique_leader); overrides the verify block's list");
@@ -116,6 +117,7 @@ int main(int argc, char** argv) {
   showCmd->add_option("--property,-p", show.property, "Which counterexample (default: the first violated property)");
   showCmd->add_option("--robot", show.robot, "Only this robot's steps; the others' are counted between them");
   showCmd->add_flag("--full-state", show.fullState, "Every variable after each step, not only those the step changed");
+  showCmd->add_option("--msc", show.msc, "Also draw the counterexample as a message sequence chart (SVG) in this file");
   showCmd->add_flag_callback("--no-fingerprint", [&show] { show.checkFingerprint = false; },
                              "Read the trace although the model's fingerprint differs from the file's (the same mission read through "
                              "another path)");

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "sequence_chart.hpp"
 #include "semo/checker/stepper.hpp"
 #include "semo/checker/trace_reader.hpp"
 #include "semo/frontend/json_text.hpp"
@@ -119,7 +120,18 @@ int runShow(const ShowOptions& options) {
   traceDiags.sortByPosition();
   traceDiags.print(std::cerr);
   if (!trace) return kBadInput;
-  const std::string text = checker::traceToText(model, trace->toTrace());
+  const checker::Trace asChecked = trace->toTrace();
+  if (options.msc) {
+    std::vector<std::string> inputs = filesRead(built->sources);
+    inputs.insert(inputs.end(), {options.trace, in.input, in.strategy.value_or(""), in.robotsDir.value_or("")});
+    if (!outputsSpareInputs({{"--msc", *options.msc}}, inputs)) return kBadInput;
+    const std::string name = trace->property.empty() ? std::string("the model error") : trace->property;
+    if (!writeAtomically(*options.msc, sequenceChartSvg(model, asChecked, "counterexample for " + name + " - " + in.input))) {
+      std::cerr << "semo-verify: error: cannot write '" << *options.msc << "'\n";
+      return kBadInput;
+    }
+  }
+  const std::string text = checker::traceToText(model, asChecked);
   std::cout << (options.robot || options.fullState ? narrowed(text, *trace, stepper, options) : text);
   return kOk;
 }
