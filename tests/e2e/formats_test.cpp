@@ -112,5 +112,43 @@ TEST(Formats, NoneOfThemReplacesAnInput) {
   EXPECT_EQ(slurp(strategy), before);
 }
 
+// `graph`: the dot text says what the mission says, and Graphviz renders it.
+std::string rendered(const fs::path& dot, const fs::path& dir) {
+  if (std::string(SEMO_DOT).empty()) return {};
+  const fs::path svg = dir / (dot.stem().string() + ".svg");
+  const std::string command = "'" SEMO_DOT "' -Tsvg '" + dot.string() + "' -o '" + svg.string() + "'";
+  if (std::system(command.c_str()) != 0) return "dot failed";
+  return slurp(svg);
+}
+
+TEST(Formats, GraphDrawsTheModesTheGroupsAndTheTaskGraphs) {
+  const fs::path dir = workDir("formats_graph");
+  const std::string scouting = "specs/examples/scouting/scouting.semo -s specs/examples/scouting/strategy.xml";
+  ASSERT_EQ(verify("graph " + scouting + " --modes -o '" + (dir / "modes.dot").string() + "'", dir).exit, 0);
+  const std::string modes = slurp(dir / "modes.dot");
+  EXPECT_NE(modes.find("label=\"SlaveTeam\""), std::string::npos);
+  EXPECT_NE(modes.find("label=\"catch danger\""), std::string::npos);
+  EXPECT_NE(modes.find("SEARCH_MODE\\nListen: CommOperator\\nAction: Search"), std::string::npos) << modes;
+  EXPECT_NE(modes.find("[label=\"default\", style=dashed]"), std::string::npos);
+  ASSERT_EQ(verify("graph " + scouting + " --groups -o '" + (dir / "groups.dot").string() + "'", dir).exit, 0);
+  const std::string groups = slurp(dir / "groups.dot");
+  EXPECT_NE(groups.find("leader (capable of ColorSensor)"), std::string::npos);
+  EXPECT_NE(groups.find("heartbeat 500 ms, takeover after 2000 ms"), std::string::npos);
+  EXPECT_NE(groups.find("ev3_0\\nEv3Robot"), std::string::npos);
+  ASSERT_EQ(verify("graph " + scouting + " --tasks --robot ev3_0 -o '" + (dir / "tasks.dot").string() + "'", dir).exit, 0);
+  const std::string tasks = slurp(dir / "tasks.dot");
+  EXPECT_NE(tasks.find("scenario SEARCH_MODE (proven; period 5000 us)"), std::string::npos);
+  EXPECT_NE(tasks.find("[label=\"1:4\\ncap 5\"]"), std::string::npos) << "color_reader to paper_detector: rates and proven capacity";
+  EXPECT_EQ(tasks.find("burger_0"), std::string::npos);
+  CliRun none = verify("graph specs/examples/swarm/swarm3.semo -s specs/examples/swarm/strategy.xml --modes --groups", dir);
+  EXPECT_EQ(none.exit, 2) << "one drawing at a time";
+  if (std::string(SEMO_DOT).empty()) GTEST_SKIP() << "Graphviz is not installed";
+  for (const char* name : {"modes.dot", "groups.dot", "tasks.dot"}) {
+    const std::string svg = rendered(dir / name, dir);
+    EXPECT_NE(svg.find("<svg"), std::string::npos) << name;
+  }
+  EXPECT_NE(slurp(dir / "modes.svg").find(">catch find_color_paper</text>"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace semo::e2e

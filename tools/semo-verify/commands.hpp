@@ -143,6 +143,13 @@ struct AnalyzeOptions {
 // header (a `check --json` root). Returns an error in words, or "".
 std::string modelInputFromTrace(const nlohmann::json& root, ModelInput& in);
 
+struct GraphOptions {
+  std::string mission, strategy;
+  std::optional<std::string> robotsDir, robot, output;
+  std::string what = "modes";  // modes, groups or tasks
+};
+int runGraph(const GraphOptions& options);
+
 struct ShowOptions {
   std::string trace;                       // a `check --json` or `check --trace-out` file
   ModelInput model;                        // empty fields: as the trace file records them

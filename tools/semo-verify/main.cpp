@@ -122,6 +122,22 @@ int main(int argc, char** argv) {
                              "Read the trace although the model's fingerprint differs from the file's (the same mission read through "
                              "another path)");
 
+  semo::cli::GraphOptions graph;
+  CLI::App* graphCmd = app.add_subcommand("graph", "Draw the mission for Graphviz (dot -Tsvg): each team's mode machine, each group block "
+                                                   "with its arms and candidate robots, or each robot's task graph by scenario with "
+                                                   "execution times, rates and proven capacities");
+  graphCmd->add_option("mission", graph.mission, "Mission file (.semo)")->required();
+  graphCmd->add_option("--strategy,-s", graph.strategy, "Strategy file (.xml)")->required();
+  graphCmd->add_option("--robots,-r", graph.robotsDir, "Folder of URDF files");
+  auto* drawings = graphCmd->add_option_group("drawing", "What to draw");
+  drawings->add_flag_callback("--modes", [&graph] { graph.what = "modes"; }, "Each team's modes and the events that switch them (default)");
+  drawings->add_flag_callback("--groups", [&graph] { graph.what = "groups"; }, "Each group block, its arms and the robots that may take them");
+  drawings->add_flag_callback("--tasks", [&graph] { graph.what = "tasks"; },
+                              "Each robot's task graph, a cluster per scenario, with proven channel capacities (Z3: a few seconds)");
+  drawings->require_option(0, 1);
+  graphCmd->add_option("--robot", graph.robot, "With --tasks: only this robot");
+  graphCmd->add_option("--output,-o", graph.output, "Write the dot text to this file (default: standard output)");
+
   semo::cli::EmitOptions emit;
   CLI::App* emitCmd = app.add_subcommand("emit", "Verify the mission, then write one C++ program per robot, a CMake project that builds them "
                                                  "against semo_runtime, and certificate.json (specs/certificate.md); refuses (exit 1) "
@@ -299,6 +315,7 @@ int main(int argc, char** argv) {
   if (*emitCmd) return semo::cli::runEmit(emit);
   if (*certifyCmd) return semo::cli::runCertify(certify);
   if (*showCmd) return semo::cli::runShow(show);
+  if (*graphCmd) return semo::cli::runGraph(graph);
   if (*sdfCmd) {
     const int inputs = (sdfOptions.mission ? 1 : 0) + (sdfOptions.graphJson ? 1 : 0) + (sdfOptions.sdf3.empty() ? 0 : 1);
     if (inputs != 1) {
