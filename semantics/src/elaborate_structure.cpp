@@ -117,8 +117,10 @@ void Elaborator::run() {
     }
   }
   checkEvents();
+  checkTopics();
   computeReachability();
   elaborateVerify();
+  checkCrashBudgets();
   checkStrategyAgainstMission();
 }
 

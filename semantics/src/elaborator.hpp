@@ -47,6 +47,10 @@ class Elaborator {
   model::Expr lowerExpr(const ast::Expr& e, Index team);
   Index topicFor(const ast::Name& owner, const ast::Name& var, bool reliable, bool writing, SourceRange at);
 
+  // elaborate_lint.cpp
+  void checkTopics();
+  void checkCrashBudgets();
+
   // elaborate_robots.cpp
   void checkRobotSets();
   void walkService(Index service, const RobotSet& robots, std::vector<Index>& stack);
