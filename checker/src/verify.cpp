@@ -330,6 +330,48 @@ void addTaskGraphs(Report& report, std::vector<sdf::TaskGraph> graphs, const sdf
   else if (report.exitCode == 3 || code == 3) report.exitCode = 3;
 }
 
+namespace {
+
+// The checks the verify block names that this mission gives nothing to check: reported proven,
+// with the reason, rather than silently left out. Only those the selection (--prop) asks for.
+void addVacuousVerdicts(Report& out, const ir::Model& model, const model::MissionModel& m, const std::vector<std::string>& globs) {
+  if (!m.assumptions.checksListed) return;
+  auto family = [](const std::string& name, const std::string& check) { return name == check || name.rfind(check + "[", 0) == 0; };
+  for (const std::string& check : m.assumptions.checks) {
+    bool selected = globs.empty();
+    for (const std::string& g : globs) selected = selected || globMatches(g, check) || globMatches(g, check + "[*]") || globMatches(g, check + "[]");
+    if (!selected) continue;
+    bool any = check == "deadlock_freedom" ? model.validEnd.has_value() : false;
+    for (const ir::Invariant& i : model.invariants) any = any || family(i.name, check);
+    for (const ir::Property& p : model.properties) any = any || family(p.name, check);
+    for (const PropertyVerdict& v : out.properties) any = any || family(v.name, check);
+    if (any) continue;
+    std::string why;
+    bool leaders = false, groups = !m.groupBlocks.empty(), knowledge = false, sends = false, teams = false;
+    for (const model::GroupBlock& b : m.groupBlocks) leaders = leaders || b.isLeaderBlock;
+    for (const model::Topic& t : m.topics) sends = sends || (t.reliable && t.written);
+    for (const strategy::Service& s : m.strategy.services) knowledge = knowledge || (s.kind == strategy::Service::Kind::Group && !s.knowledge.empty());
+    for (const model::Team& t : m.teams) teams = teams || (t.robots.size() >= 2 && t.modes.size() >= 2);
+    if (check == "group_formation") why = groups ? "no group block is reached" : "the mission has no group block";
+    else if (check == "unique_leader" || check == "leader_reelection") why = leaders ? "no leader block is reached" : "the mission has no leader block";
+    else if (check == "buffer_bounds") why = sends ? "no channel is used" : "the mission sends nothing (no send/receive channel)";
+    else if (check == "knowledge_convergence") why = knowledge ? "no group service with knowledge runs in the mission" : "no group service shares knowledge";
+    else if (check == "mode_agreement") why = teams ? "no team can disagree" : "no team has two robots and two modes";
+    else why = "nothing in the mission to check";
+    PropertyVerdict v;
+    v.name = check;
+    v.kind = check == "mode_agreement" || check == "knowledge_convergence" || check == "leader_reelection" ? PropertyVerdict::Kind::Liveness
+                                                                                                      : PropertyVerdict::Kind::Safety;
+    v.verdict = Verdict::Proven;
+    v.engine = out.engine == Engine::Smt ? "smt" : "explicit";
+    v.vacuous = why;
+    v.coverage = "vacuous: " + why;
+    out.properties.push_back(std::move(v));
+  }
+}
+
+}  // namespace
+
 std::optional<Report> verify(const ir::Model& model, const model::MissionModel* mission, const VerifyOptions& options,
                              DiagnosticEngine& diags) {
   for (const ir::Rule& r : model.rules) {
@@ -346,6 +388,7 @@ std::optional<Report> verify(const ir::Model& model, const model::MissionModel* 
   if (options.properties) {
     if (options.engine == Engine::Smt) runSmt(out, model, mission, options, diags.sources());
     else runExplicit(out, model, mission, options, diags.sources());
+    if (mission != nullptr) addVacuousVerdicts(out, model, *mission, options.propertyGlobs);
   }
   if (options.taskGraphs && mission != nullptr) {
     std::optional<std::vector<sdf::TaskGraph>> graphs = sdf::generateTaskGraphs(*mission, diags);

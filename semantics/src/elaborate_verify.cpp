@@ -93,6 +93,7 @@ void Elaborator::elaborateVerify() {
     a.checks.push_back(check.text);
   }
   if (v.checks.empty()) a.checks = allChecks();
+  a.checksListed = !v.checks.empty();
 
   for (const ast::Property& p : v.properties) {
     auto twice = std::find_if(m_.properties.begin(), m_.properties.end(),

@@ -103,6 +103,8 @@ std::string reportText(const checker::Report& r, const ir::Model& model, const s
       out += "fairness:    " + fairnessLine(model) + "\n";
     }
     verdictLines(out, r, Kind::Liveness);
+  } else {
+    verdictLines(out, r, Kind::Liveness);  // a named LTL check with nothing to check: vacuous
   }
   counterexamples(out, r, model);
   return out;
@@ -147,7 +149,7 @@ nlohmann::json reportJson(const checker::Report& r, const ir::Model& model, cons
     if (p.kind == Kind::GroupFormation) continue;  // in "groupFormation"
     json jp = {{"name", p.name}, {"verdict", checker::verdictName(p.verdict)}, {"origin", p.origin},
                {"type", p.kind == Kind::Safety ? "safety" : "liveness"}};
-    if (p.kind == Kind::Safety && smt) {
+    if (p.kind == Kind::Safety && smt && p.vacuous.empty()) {
       const std::size_t j = invariant;
       if (r.smt->inductionDepth[j] != 0) jp["inductionDepth"] = r.smt->inductionDepth[j];
       if (p.proof == checker::ProofKind::Exhausted) jp["proof"] = "exhausted";
@@ -185,6 +187,7 @@ nlohmann::json reportJson(const checker::Report& r, const ir::Model& model, cons
       ++invariant;
     }
     if (p.counterexample) jp["counterexample"] = traceJson(*p.counterexample);
+    if (!p.vacuous.empty()) jp["vacuous"] = p.vacuous;
     props.push_back(jp);
   }
   json root = {{"schemaVersion", 1}, {"tool", std::string("semo-verify ") + kToolVersion},

@@ -69,6 +69,9 @@ struct PropertyVerdict {
   std::uint32_t conjuncts = 0;  // Ic3
   std::string coverage;         // what the verdict covers, in words ("all 120 reachable states ...")
   std::optional<Trace> counterexample;
+  // A check the verify block names that has nothing to check in this mission (buffer_bounds without
+  // any send): proven, and why it holds vacuously. Empty otherwise.
+  std::string vacuous;
 };
 const char* propertyKindName(PropertyVerdict::Kind k);  // "safety", "liveness", "group formation"
 

@@ -182,6 +182,7 @@ struct Assumptions {
   // qualitative model does not read it.
   std::optional<double> lossProbability;
   std::vector<std::string> checks;  // built-in properties to check (all of them if none named)
+  bool checksListed = false;         // the verify block named them (a named one with nothing to check is reported vacuous)
 };
 
 struct Ltl {
