@@ -1,7 +1,10 @@
 #include "semo/checker/trace.hpp"
 
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
+
+#include "semo/checker/stepper.hpp"
 
 namespace semo::checker {
 
@@ -16,6 +19,44 @@ namespace {
 
 std::string robotName(const ir::Model& m, const ir::Rule& r) {
   return r.robot == ir::kNoRobot ? "-" : m.robots.at(static_cast<std::size_t>(r.robot));
+}
+
+// A lasso's fair steps that are enabled somewhere on the loop but never taken there: weak fairness
+// does not force them (each is disabled somewhere on the loop), which is often the answer to "why
+// does this never happen?". One line per fairness group, with the steps before which it is enabled.
+std::string enabledButNotTaken(const ir::Model& m, const Trace& t) {
+  if (t.loopStart >= t.steps.size()) return {};
+  const Stepper stepper(m);
+  std::vector<std::int32_t> state = t.initial;
+  for (std::size_t i = 0; i < t.loopStart; ++i) {
+    for (const Change& c : t.steps[i].changes) state[c.var] = c.after;
+  }
+  auto groupOf = [&](std::size_t r) { return m.rules[r].fairGroup.empty() ? m.rules[r].name : m.rules[r].fairGroup; };
+  std::map<std::string, std::vector<std::size_t>> enabledBefore;  // group -> loop steps (1-based) before which it is enabled
+  std::map<std::string, std::size_t> firstRule;
+  std::map<std::string, bool> taken;
+  for (std::size_t i = t.loopStart; i < t.steps.size(); ++i) {
+    for (std::size_t r : stepper.enabledRules(state)) {
+      if (!m.rules[r].weaklyFair && !m.rules[r].stronglyFair) continue;
+      std::vector<std::size_t>& at = enabledBefore[groupOf(r)];
+      if (at.empty() || at.back() != i + 1) at.push_back(i + 1);
+      firstRule.emplace(groupOf(r), r);
+    }
+    taken[groupOf(t.steps[i].rule)] = true;
+    for (const Change& c : t.steps[i].changes) state[c.var] = c.after;
+  }
+  std::string out;
+  for (const auto& [group, at] : enabledBefore) {
+    if (taken[group]) continue;
+    const ir::Rule& r = m.rules[firstRule[group]];
+    std::string steps;
+    for (std::size_t k = 0; k < at.size() && k < 6; ++k) steps += (k == 0 ? "" : ", ") + std::to_string(at[k]);
+    if (at.size() > 6) steps += ", ...";
+    out += "       [" + robotName(m, r) + "] " + (r.label.empty() ? r.name : r.label) + "  (enabled before step" + (at.size() == 1 ? " " : "s ") +
+           steps + ")\n";
+  }
+  if (out.empty()) return {};
+  return "  fair steps enabled on the loop but never taken (each is disabled somewhere on it, so fairness does not force it):\n" + out;
 }
 
 }  // namespace
@@ -62,6 +103,7 @@ std::string traceToText(const ir::Model& m, const Trace& t) {
     } else {
       out << "  then back to the state before step " << (t.loopStart + 1) << ": the loop repeats for ever, and "
           << t.property << " does not hold\n";
+      out << enabledButNotTaken(m, t);
     }
   }
   if (t.kind == "invariant") out << "  then " << t.property << " does not hold\n";
@@ -71,8 +113,11 @@ std::string traceToText(const ir::Model& m, const Trace& t) {
 
 std::string traceToJson(const ir::Model& m, const Trace& t) {
   using nlohmann::json;
-  json initial = json::object();
-  for (ir::VarId v = 0; v < t.initial.size(); ++v) initial[m.variables[v].name] = t.initial[v];
+  json initial = json::object(), initialText = json::object();
+  for (ir::VarId v = 0; v < t.initial.size(); ++v) {
+    initial[m.variables[v].name] = t.initial[v];
+    initialText[m.variables[v].name] = valueText(m.variables[v], t.initial[v]);  // as "fromText"/"toText" show values
+  }
   json steps = json::array();
   for (std::size_t i = 0; i < t.steps.size(); ++i) {
     const Step& s = t.steps[i];
@@ -88,7 +133,7 @@ std::string traceToJson(const ir::Model& m, const Trace& t) {
     step["robot"] = r.robot == ir::kNoRobot ? json(nullptr) : json(m.robots.at(static_cast<std::size_t>(r.robot)));
     steps.push_back(step);
   }
-  json root = {{"property", t.property}, {"kind", t.kind}, {"initial", initial}, {"steps", steps}};
+  json root = {{"property", t.property}, {"kind", t.kind}, {"initial", initial}, {"initialText", initialText}, {"steps", steps}};
   if (t.loopStart != SIZE_MAX) root["loopStart"] = t.loopStart + 1;
   return root.dump(2) + "\n";
 }

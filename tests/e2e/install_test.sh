@@ -9,7 +9,7 @@ rm -rf "$work"; mkdir -p "$work"; cd "$work"
 cmake --install "$build" --prefix "$work/prefix" > install.log
 share="$work/prefix/share/semo/specs/examples/swarm"
 "$work/prefix/bin/semo-verify" check "$share/swarm3.semo" --strategy "$share/strategy.xml" > check.txt
-grep -q "^result: 5 proven, 0 violated, 0 unknown" check.txt
+grep -q "^result: 6 proven, 0 violated, 0 unknown" check.txt
 "$work/prefix/bin/semo-verify" emit "$share/swarm3.semo" --strategy "$share/strategy.xml" --out "$work/emitted" > emit.txt
 cmake -S "$work/emitted" -B "$work/emitted/build" -Dsemo_runtime_DIR="$work/prefix/lib/cmake/semo_runtime" > configure.log
 (cd "$build" && cpack -G DEB -B "$work/deb" > "$work/cpack.log")

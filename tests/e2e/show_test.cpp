@@ -26,6 +26,10 @@ TEST(Show, PrintsTheCounterexampleCheckPrinted) {
   EXPECT_EQ(root.at("schemaVersion"), 1);
   EXPECT_EQ(root.at("exitCode"), 1);
   EXPECT_EQ(root.at("tool").get<std::string>().rfind("semo-verify ", 0), 0u);
+  // The initial state with value names too, as the changes show them.
+  const nlohmann::json& cex = root.at("properties").at(1).at("counterexample");
+  EXPECT_EQ(cex.at("initialText").at("base.mode"), "COLLECT_MODE");
+  EXPECT_EQ(cex.at("initial").at("base.mode"), 0);
   CliRun show = verify("show '" + saved + "'", dir);
   ASSERT_EQ(show.exit, 0) << show.err;
   ASSERT_NE(show.out.find("counterexample for deadlock_freedom (deadlock): 11 steps"), std::string::npos) << show.out;
