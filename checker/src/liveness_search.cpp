@@ -220,8 +220,14 @@ LivenessResult checkLiveness(const ir::Model& model, const SearchLimits& limits,
     if (worker != 0) mine.onProgress = nullptr;
     for (std::size_t k = next++; k < n; k = next++) {
       const auto begin = Clock::now();
+      if (limits.onPhase) limits.onPhase("liveness: " + model.properties[k].name + " (" + std::to_string(k + 1) + " of " + std::to_string(n) + "): searching");
       outcomes[k] = decide(cm, facts, k, mine, options, start, reduce);
       outcomes[k].method.seconds = std::chrono::duration<double>(Clock::now() - begin).count();
+      if (limits.onPhase) {
+        limits.onPhase("liveness: " + model.properties[k].name + ": " + verdictName(outcomes[k].property.verdict) + " after " +
+                       std::to_string(static_cast<long long>(outcomes[k].method.seconds)) + " s, " + std::to_string(outcomes[k].states) +
+                       " product states");
+      }
     }
   };
   std::vector<std::thread> helpers;

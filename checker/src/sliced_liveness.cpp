@@ -54,6 +54,7 @@ SlicedOutcome refineSlices(const CompiledModel& full, const ControlFacts& facts,
   SearchLimits sub = limits;
   sub.threads = 1;
   sub.maxStates = std::min(limits.maxStates, sliceStates);
+  sub.onPhase = nullptr;  // a slice's verdict is not the property's: the rounds are said below
   LivenessOptions plain;
   plain.slicing = false;
   double symbolicSeconds = 0;
@@ -72,6 +73,11 @@ SlicedOutcome refineSlices(const CompiledModel& full, const ControlFacts& facts,
     LivenessResult r;
     r.complete = false;
     r.limitReached = "--max-states " + std::to_string(sub.maxStates) + " reached by a smaller slice";
+    if (limits.onPhase) {
+      limits.onPhase("liveness: " + prop.name + ": slice of " + std::to_string(slice.variables.size()) + " of " +
+                     std::to_string(model.variables.size()) + " variables (round " + std::to_string(round + 1) + ")" +
+                     (enumerate ? "" : ", symbolically"));
+    }
     if (enumerate) r = checkLiveness(slice.model, sub, plain);
     // A developer's trace of the refinement (checker/README.md), on stderr.
     if (std::getenv("SEMO_DEBUG_SLICING") != nullptr) {
@@ -208,7 +214,10 @@ void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLim
 SlicedOutcome checkSliced(const CompiledModel& full, const ControlFacts& facts, std::size_t property, const SearchLimits& limits,
                           std::uint64_t sliceStates, bool symbolic) {
   SlicedOutcome out = refineSlices(full, facts, property, limits, sliceStates, symbolic);
-  if (symbolic && out.property.verdict == Verdict::Unknown) huntOnCone(full, property, limits, out, &facts);
+  if (symbolic && out.property.verdict == Verdict::Unknown) {
+    if (limits.onPhase) limits.onPhase("liveness: " + full.model().properties[property].name + ": no slice decided; hunting the property's cone for a fair loop (symbolically)");
+    huntOnCone(full, property, limits, out, &facts);
+  }
   return out;
 }
 

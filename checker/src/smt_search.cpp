@@ -99,6 +99,7 @@ void runIc3(const ir::Model& m, const std::vector<Target>& props, const SmtOptio
   z3::context ctx;
   SmtEncoding enc(ctx, m);
   if (!rangesProven) {
+    if (options.onPhase) options.onPhase("smt: IC3 on the variables' ranges");
     Ic3Outcome ranges = detail::proveWithIc3(ctx, enc, enc.transitionByCases(0) && !enc.inRange(1), options.timeoutMs);
     if (ranges.kind == Ic3Outcome::Kind::Violated) {
       auto leaves = [](SmtEncoding& e, std::uint32_t d) { return !e.inRange(d); };
@@ -125,7 +126,9 @@ void runIc3(const ir::Model& m, const std::vector<Target>& props, const SmtOptio
       return;
     }
   }
-  for (std::size_t j : open) {
+  for (std::size_t n = 0; n < open.size(); ++n) {
+    const std::size_t j = open[n];
+    if (options.onPhase) options.onPhase("smt: IC3 on " + props[j].name + " (" + std::to_string(n + 1) + " of " + std::to_string(open.size()) + ")");
     Ic3Outcome o = detail::proveWithIc3(ctx, enc, !good(enc, m, props[j], 0), options.timeoutMs);
     if (o.kind == Ic3Outcome::Kind::Proven) {
       result.properties[j].verdict = Verdict::Proven;
@@ -174,6 +177,7 @@ SmtResult checkSafetySmt(const ir::Model& model, const SmtOptions& options) {
   bool complete = false, limited = false;
   std::uint32_t depth = 0;
   for (;; ++depth) {
+    if (options.onPhase) options.onPhase("smt: bounded model checking, depth " + std::to_string(depth) + " of " + std::to_string(options.maxDepth));
     if (depth > 0) {
       // An update that leaves a declared range is a modelling error, as in the explicit engine.
       z3::check_result r = checkWith(bmc, !enc.inRange(depth));
@@ -251,6 +255,7 @@ SmtResult checkSafetySmt(const ir::Model& model, const SmtOptions& options) {
     std::vector<char>& proven = inductiveFlags;
     const std::uint32_t maxK = std::min(depth + 1, options.maxInduction);
     for (std::uint32_t k = 1; k <= maxK; ++k) {
+      if (options.onPhase) options.onPhase("smt: k-induction, k = " + std::to_string(k) + " of " + std::to_string(maxK));
       step.add(ind.transition(k - 1));
       for (std::size_t i = 0; i < k; ++i) step.add(!ind.sameState(i, k));
       for (std::size_t j : candidates) step.add(z3::implies(flags[static_cast<int>(j)], predicate(j, k - 1)));

@@ -2,8 +2,11 @@
 // Report, or write the model out.
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <memory>
+#include <mutex>
 #include <thread>
 #include <nlohmann/json.hpp>
 
@@ -118,6 +121,18 @@ checker::VerifyOptions verifyOptions(const CheckOptions& options) {
   v.smt.timeoutMs = options.smtTimeoutS * 1000u;
   v.crashOverride = options.model.crash;
   if (!options.json) {
+    // Each long phase said as it starts (a liveness property, a BMC depth, an IC3 run), once the run
+    // has taken two seconds: quick checks stay quiet. On a terminal the line is rewritten in place.
+    const bool onTerminal = isatty(STDERR_FILENO) != 0;
+    auto phase = [onTerminal, started = std::chrono::steady_clock::now(), lock = std::make_shared<std::mutex>()](const std::string& what) {
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+      if (seconds < 2.0) return;
+      const std::lock_guard<std::mutex> hold(*lock);
+      std::cerr << (onTerminal ? "\r\x1b[K" : "") << "[" << static_cast<long long>(seconds) << " s] " << what << (onTerminal ? "" : "\n")
+                << std::flush;
+    };
+    v.limits.onPhase = phase;
+    v.smt.onPhase = phase;
     // On a terminal the line is rewritten in place; in a log, one line every ten seconds.
     const bool terminal = isatty(STDERR_FILENO) != 0;
     v.limits.onProgress = [terminal, last = -10.0](const checker::Progress& p) mutable {

@@ -33,6 +33,9 @@ struct SearchLimits {
   unsigned threads = 1;
   // Called about once a second during a long search (never for searches under a second).
   std::function<void(const Progress&)> onProgress;
+  // Told as each long phase starts or ends (a liveness property's search, its verdict), for
+  // progress lines; may be called from several threads at once, may be empty.
+  std::function<void(const std::string&)> onPhase;
 };
 
 enum class Verdict { Proven, Violated, Unknown };

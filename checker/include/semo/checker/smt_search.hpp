@@ -6,6 +6,7 @@
 // invariant, checked independently before the property counts as proven, or a deeper
 // counterexample, rebuilt by BMC at its depth. Anything else is reported unknown, bounded.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,9 @@ struct SmtOptions {
   std::uint32_t maxInduction = 3;  // induction tries k <= min(K + 1, this)
   bool ic3 = true;              // IC3 on what k-induction leaves open
   unsigned timeoutMs = 0;       // per solver call (an IC3 run is one call); 0: none
+  // Told what the engine is doing as each phase starts (a BMC depth, an induction k, an IC3 run),
+  // for progress lines; may be empty.
+  std::function<void(const std::string&)> onPhase;
 };
 
 // How a property was decided, beside its verdict.
