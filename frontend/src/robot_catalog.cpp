@@ -316,6 +316,23 @@ RobotCatalog buildCatalog(const strategy::Strategy& strategy, const std::optiona
     if (robotsDir && !fs::exists(path, ec) && fs::exists(base / fs::path(entry.urdf).filename(), ec)) {
       path = base / fs::path(entry.urdf).filename();
     }
+    if (!fs::exists(path, ec)) {
+      // Say where it was looked for, offer a file of that folder with a close name, and --robots.
+      const fs::path folder = robotsDir ? fs::path(*robotsDir) : path.lexically_normal().parent_path();
+      const std::string file = fs::path(entry.urdf).filename().string();
+      std::vector<std::string> near;
+      for (fs::directory_iterator it(folder.empty() ? fs::path(".") : folder, ec), end; !ec && it != end; it.increment(ec)) {
+        if (it->path().extension() == ".urdf") near.push_back(it->path().filename().string());
+      }
+      const std::string suggestion = suggestClosest(file, near);
+      const std::string where = robotsDir ? "--robots '" + *robotsDir + "' has no '" + file + "' (nor is there '" + path.lexically_normal().string() + "')"
+                                          : "no file '" + path.lexically_normal().string() + "' (urdf=\"" + entry.urdf +
+                                                "\" resolved against the strategy's folder '" +
+                                                (strategy.folder.empty() ? std::string(".") : strategy.folder) + "')";
+      Diagnostic& d = diags.error(entry.at, "cannot read robot description: " + where + (suggestion.empty() ? "" : "; " + suggestion));
+      if (!robotsDir) DiagnosticEngine::note(d, entry.at, "if the URDF files are elsewhere, give their folder with --robots DIR");
+      continue;
+    }
     auto type = loadRobotType(sources, path.lexically_normal().string(), entry.at, diags);
     if (!type) continue;
     if (entry.type && *entry.type != type->name) {
