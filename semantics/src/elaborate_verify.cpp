@@ -139,6 +139,21 @@ void Elaborator::lowerAtom(const ast::Ltl& f, model::Ltl& out) {
   Index team = m_.findTeam(lhs.owner.text);
   Index robot = m_.findRobot(lhs.owner.text);
   if (team == model::kNone && robot == model::kNone) {
+    // `rover[2]` declares rover_0 and rover_1: a property that names the declaration names none.
+    std::vector<std::string> numbered;
+    for (const model::Robot& r : m_.robots) {
+      if (r.name.size() > lhs.owner.text.size() + 1 && r.name.rfind(lhs.owner.text + "_", 0) == 0 &&
+          r.name.find_first_not_of("0123456789", lhs.owner.text.size() + 1) == std::string::npos) {
+        numbered.push_back(r.name);
+      }
+    }
+    if (!numbered.empty()) {
+      std::string list;
+      for (const std::string& n : numbered) list += (list.empty() ? "'" : ", '") + n + "'";
+      diags_.error(lhs.owner.range, "undefined team or robot '" + lhs.owner.text + "': the team declares " + list +
+                                        "; name one of them (" + numbered.front() + "." + lhs.var.text + ")");
+      return;
+    }
     std::vector<std::string> names = teamNames();
     for (const model::Robot& r : m_.robots) names.push_back(r.name);
     diags_.error(lhs.owner.range, withHint("undefined team or robot '" + lhs.owner.text + "'", lhs.owner.text, names));
