@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <set>
 #include <stdexcept>
 
@@ -251,6 +253,26 @@ std::optional<RobotType> loadRobotType(SourceManager& sources, const std::string
     return std::nullopt;
   }
 
+  // A xacro file (ROS's macro language for URDF) is not a URDF: semo reads what xacro writes.
+  for (const XMLElement* e = robot; e != nullptr;) {
+    std::string_view name = e->Name();
+    bool macro = name.rfind("xacro:", 0) == 0;
+    for (const tinyxml2::XMLAttribute* a = e->FirstAttribute(); a != nullptr && !macro; a = a->Next()) {
+      macro = std::string_view(a->Value()).find("${") != std::string_view::npos;
+    }
+    if (macro) {
+      xml.error(e, "a xacro file, not a URDF: semo reads plain URDF; expand it first (ROS: `xacro " +
+                       std::filesystem::path(path).filename().string() + " > robot.urdf`) and give the strategy that file");
+      return std::nullopt;
+    }
+    // Depth first through the document, without recursion.
+    if (const XMLElement* child = e->FirstChildElement()) {
+      e = child;
+      continue;
+    }
+    while (e != nullptr && e != robot && e->NextSiblingElement() == nullptr) e = e->Parent() ? e->Parent()->ToElement() : nullptr;
+    e = e == nullptr || e == robot ? nullptr : e->NextSiblingElement();
+  }
   if (!checkJointTree(robot, xml)) return std::nullopt;
   urdf::ModelInterfaceSharedPtr model;
   std::vector<std::string> errors;
@@ -311,6 +333,43 @@ RobotCatalog buildCatalog(const strategy::Strategy& strategy, const std::optiona
   for (const strategy::RobotEntry& entry : strategy.robots) {
     fs::path base = robotsDir ? fs::path(*robotsDir) : fs::path(strategy.folder);
     fs::path path = fs::path(entry.urdf).is_absolute() ? fs::path(entry.urdf) : base / entry.urdf;
+    // `package://PKG/rest`, as ROS writes it: PKG/rest under --robots or a ROS_PACKAGE_PATH folder
+    // (or that folder itself named PKG), else the file name alone in --robots.
+    constexpr std::string_view kPackage = "package://";
+    if (entry.urdf.rfind(kPackage, 0) == 0) {
+      const std::string rest = entry.urdf.substr(kPackage.size());
+      const std::string package = rest.substr(0, rest.find('/'));
+      const std::string inside = rest.find('/') == std::string::npos ? std::string() : rest.substr(rest.find('/') + 1);
+      std::vector<fs::path> tried;
+      std::vector<fs::path> roots;
+      if (robotsDir) roots.push_back(*robotsDir);
+      if (const char* ros = std::getenv("ROS_PACKAGE_PATH")) {
+        for (std::string_view list(ros); !list.empty();) {
+          const std::size_t colon = std::min(list.find(':'), list.size());
+          if (colon > 0) roots.emplace_back(std::string(list.substr(0, colon)));
+          list.remove_prefix(std::min(colon + 1, list.size()));
+        }
+      }
+      std::error_code ec;
+      std::optional<fs::path> found;
+      for (const fs::path& root : roots) {
+        for (const fs::path& candidate : {root / package / inside, root.filename() == package ? root / inside : fs::path(),
+                                          robotsDir && root == fs::path(*robotsDir) ? root / fs::path(inside).filename() : fs::path()}) {
+          if (candidate.empty() || found) continue;
+          tried.push_back(candidate);
+          if (fs::exists(candidate, ec)) found = candidate;
+        }
+      }
+      if (!found) {
+        std::string where;
+        for (const fs::path& t : tried) where += (where.empty() ? "" : ", ") + t.string();
+        diags.error(entry.at, "cannot find '" + entry.urdf + "': " +
+                                  (roots.empty() ? std::string("a package:// path needs --robots DIR or ROS_PACKAGE_PATH to say where packages are")
+                                                 : "looked for " + where));
+        continue;
+      }
+      path = *found;
+    }
     // With --robots, a strategy written for another layout still works: fall back to the file name.
     std::error_code ec;
     if (robotsDir && !fs::exists(path, ec) && fs::exists(base / fs::path(entry.urdf).filename(), ec)) {
