@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 mode="${1:-run}"
 jobs="$(nproc)"
 
-packages=(build-essential cmake pkg-config libz3-dev libeigen3-dev libsundials-dev liburdfdom-dev libxml2-utils
+packages=(build-essential cmake pkg-config libz3-dev libeigen3-dev libsundials-dev liburdfdom-dev libxml2-utils python3-jsonschema
           libbdd-dev libtinyxml2-dev libcli11-dev nlohmann-json3-dev libfmt-dev libgtest-dev libbenchmark-dev libssl-dev spin graphviz librsvg2-bin
           cyclonedds-dev cyclonedds-tools)
 if [ "$mode" = fuzz ]; then packages+=(clang libclang-rt-14-dev); fi

@@ -1,0 +1,31 @@
+#!/bin/sh
+# specs/check.schema.json against real outputs of check --json: a safety violation (explicit and
+# smt), a lasso, vacuous checks, a selection, an IR model; and a broken copy must fail.
+# Arguments: SEMO_VERIFY SOURCE_DIR WORK_DIR
+set -eu
+semo="$1"; src="$2"; work="$3"
+rm -rf "$work"; mkdir -p "$work"; cd "$src"
+run() { name="$1"; shift; "$semo" check "$@" --json > "$work/$name.json" 2>/dev/null || true; }
+run deadlock specs/defects/double_receive.semo -s specs/defects/strategy.xml
+run deadlock_smt specs/defects/double_receive.semo -s specs/defects/strategy.xml --engine smt --max-depth 12
+run formation_smt specs/defects/lone_lidar.semo -s specs/defects/strategy.xml --engine smt --max-depth 3
+run lasso tests/e2e/ir/retry_delivery_weak.ir
+run vacuous tests/e2e/inputs/vacuous_checks.semo -s tests/diagnostics/common/strategy.xml
+run selection specs/examples/swarm/swarm3.semo -s specs/examples/swarm/strategy.xml --prop mode_agreement --loss events
+python3 - "$src/specs/check.schema.json" "$work" <<'PY'
+import json, pathlib, sys
+import jsonschema
+schema = json.load(open(sys.argv[1]))
+jsonschema.Draft202012Validator.check_schema(schema)
+validator = jsonschema.Draft202012Validator(schema)
+files = sorted(pathlib.Path(sys.argv[2]).glob("*.json"))
+assert len(files) == 6, files
+for f in files:
+    doc = json.load(open(f))
+    errors = list(validator.iter_errors(doc))
+    assert not errors, f"{f.name}: {errors[0].message} at {list(errors[0].path)}"
+broken = json.load(open(files[0]))
+del broken["properties"][0]["verdict"]
+assert list(validator.iter_errors(broken)), "a property without its verdict must fail"
+print(f"SCHEMA-VALIDATES: {len(files)} outputs")
+PY
