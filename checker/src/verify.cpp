@@ -129,8 +129,11 @@ void runSmt(Report& out, const ir::Model& model, const model::MissionModel* miss
   if (mission != nullptr) {
     const model::MissionModel& m = *mission;
     std::vector<std::int64_t> budget = m.assumptions.crashBudget;  // or the one --crash asks for, as the translation took it
-    if (options.crashOverride) {
-      for (std::size_t t = 0; t < m.teams.size() && t < budget.size(); ++t) {
+    for (std::size_t t = 0; t < m.teams.size() && t < budget.size(); ++t) {
+      auto team = options.crashPerTeam.find(m.teams[t].name);
+      if (team != options.crashPerTeam.end()) {
+        budget[t] = std::min<std::int64_t>(team->second, static_cast<std::int64_t>(m.teams[t].robots.size()));
+      } else if (options.crashOverride) {
         budget[t] = std::min<std::int64_t>(*options.crashOverride, static_cast<std::int64_t>(m.teams[t].robots.size()));
       }
     }

@@ -220,7 +220,7 @@ CertifyReport certify(const std::string& dir, const CertifyOptions& options, Sou
   std::optional<model::MissionModel> mission =
       loadMission({c->mission, c->strategy, c->robotsDir.empty() ? std::nullopt : std::optional<std::string>(c->robotsDir)}, inputs, inputDiags);
   std::optional<Translation> translation;
-  if (mission) translation = translateMission(*mission, {c->crash, c->loss, c->fairLoss}, inputs, inputDiags);
+  if (mission) translation = translateMission(*mission, {c->crash, c->loss, c->fairLoss, {}}, inputs, inputDiags);
   if (!translation) {
     check.finding(Kind::Model, c->mission, "the inputs no longer make a model: " + (inputDiags.diagnostics().empty() ? std::string("?") : inputDiags.format(inputDiags.diagnostics().front())));
   } else if (checker::modelFingerprint(translation->model) != c->fingerprint) {

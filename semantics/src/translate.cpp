@@ -45,6 +45,9 @@ std::string Translator::constructOf(const Instr& in) {
 }
 
 std::int32_t Translator::crashBudget(Index team) const {
+  if (auto it = options_.crashPerTeam.find(m_.teams[team].name); it != options_.crashPerTeam.end()) {
+    return std::min<std::int32_t>(it->second, static_cast<std::int32_t>(m_.teams[team].robots.size()));
+  }
   if (options_.crashOverride) {
     return std::min<std::int32_t>(*options_.crashOverride, static_cast<std::int32_t>(m_.teams[team].robots.size()));
   }
@@ -52,6 +55,12 @@ std::int32_t Translator::crashBudget(Index team) const {
 }
 
 void Translator::assumptions() {
+  for (const auto& [name, budget] : options_.crashPerTeam) {
+    if (m_.findTeam(name) != model::kNone) continue;
+    std::string teams;
+    for (const model::Team& t : m_.teams) teams += (teams.empty() ? "" : ", ") + t.name;
+    diags_.error({}, "--crash " + std::to_string(budget) + ":" + name + ": the mission has no team '" + name + "' (its teams: " + teams + ")");
+  }
   losePublish_ = m_.assumptions.losePublish;
   loseEvents_ = m_.assumptions.loseEvents;
   // --loss: one kind or a comma-separated list of them (`events,publish`).

@@ -11,7 +11,7 @@ run deadlock_smt specs/defects/double_receive.semo -s specs/defects/strategy.xml
 run formation_smt specs/defects/lone_lidar.semo -s specs/defects/strategy.xml --engine smt --max-depth 3
 run lasso tests/e2e/ir/retry_delivery_weak.ir
 run vacuous tests/e2e/inputs/vacuous_checks.semo -s tests/diagnostics/common/strategy.xml
-run selection specs/examples/swarm/swarm3.semo -s specs/examples/swarm/strategy.xml --prop mode_agreement --loss events
+run selection specs/examples/swarm/swarm3.semo -s specs/examples/swarm/strategy.xml --prop mode_agreement --loss events --crash 1:Swarm
 python3 - "$src/specs/check.schema.json" "$work" <<'PY'
 import json, pathlib, sys
 import jsonschema

@@ -39,7 +39,7 @@ std::unique_ptr<BuiltModel> buildModel(const ModelInput& in) {
     } else {
       out->model = ir::parseText(out->sources, file, diags);
     }
-    if (in.crash || in.loss || in.fairLoss) {
+    if (in.crash || !in.crashPerTeam.empty() || in.loss || in.fairLoss) {
       diags.error({}, "--crash, --loss and --fair-loss/--unfair-loss apply to missions; an IR file states its own assumptions");
     }
   } else if (!in.strategy) {
@@ -47,6 +47,7 @@ std::unique_ptr<BuiltModel> buildModel(const ModelInput& in) {
   } else if ((out->mission = loadMission({in.input, *in.strategy, in.robotsDir}, out->sources, diags))) {
     TranslationOptions options;
     options.crashOverride = in.crash;
+    options.crashPerTeam = in.crashPerTeam;
     options.lossOverride = in.loss;
     options.fairLossOverride = in.fairLoss;
     out->translation = translateMission(*out->mission, options, out->sources, diags);
@@ -120,6 +121,7 @@ checker::VerifyOptions verifyOptions(const CheckOptions& options) {
   v.smt.induction = v.smt.ic3 = !options.bmcOnly;
   v.smt.timeoutMs = options.smtTimeoutS * 1000u;
   v.crashOverride = options.model.crash;
+  v.crashPerTeam = options.model.crashPerTeam;
   if (!options.json) {
     // Each long phase said as it starts (a liveness property, a BMC depth, an IC3 run), once the run
     // has taken two seconds: quick checks stay quiet. On a terminal the line is rewritten in place.

@@ -29,6 +29,7 @@ void addModelInput(nlohmann::json& root, const ModelInput& in) {
   if (in.robotsDir) root["robots"] = *in.robotsDir;
   nlohmann::json overrides = nlohmann::json::object();
   if (in.crash) overrides["crash"] = *in.crash;
+  if (!in.crashPerTeam.empty()) overrides["crashPerTeam"] = in.crashPerTeam;
   if (in.loss) overrides["loss"] = *in.loss;
   if (in.fairLoss) overrides["fairLoss"] = *in.fairLoss;
   if (!overrides.empty()) root["modelOptions"] = overrides;
@@ -57,6 +58,14 @@ std::string modelInputFromTrace(const nlohmann::json& root, ModelInput& in) {
     if (o.contains("crash") && !in.crash) {
       if (!o["crash"].is_number_integer() || o["crash"].get<std::int64_t>() < 0 || o["crash"].get<std::int64_t>() > 100000) return "\"modelOptions/crash\" must be a count";
       in.crash = o["crash"].get<int>();
+    }
+    if (o.contains("crashPerTeam") && in.crashPerTeam.empty()) {
+      const nlohmann::json& teams = o["crashPerTeam"];
+      if (!teams.is_object()) return "\"modelOptions/crashPerTeam\" must be an object (team: count)";
+      for (auto it = teams.begin(); it != teams.end(); ++it) {
+        if (!it->is_number_integer() || it->get<std::int64_t>() < 0 || it->get<std::int64_t>() > 100000) return "\"modelOptions/crashPerTeam\" must map teams to counts";
+        in.crashPerTeam[it.key()] = it->get<int>();
+      }
     }
     if (o.contains("loss") && !in.loss) {
       if (!o["loss"].is_string()) return "\"modelOptions/loss\" must be a string";

@@ -3,6 +3,7 @@
 // 0 clean, 1 property violated, 2 bad input, 3 resource limit reached.
 #include <cstdint>
 #include <memory>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -48,6 +49,7 @@ struct ModelInput {
   std::optional<std::string> strategy;
   std::optional<std::string> robotsDir;
   std::optional<int> crash;                // --crash N: overrides the verify block
+  std::map<std::string, int> crashPerTeam; // --crash N:TEAM (repeatable): that team's budget
   std::optional<std::string> loss;         // --loss none|publish|events|all
   std::optional<bool> fairLoss;            // --fair-loss / --unfair-loss
 };

@@ -97,6 +97,12 @@ int runEmit(const EmitOptions& options) {
     std::cerr << "semo-verify emit: error: emit needs a mission and its strategy (an IR file has no robots to generate)\n";
     return kBadInput;
   }
+  if (!in.crashPerTeam.empty()) {
+    // The certificate records one --crash for every team (certify rebuilds the model from it).
+    std::cerr << "semo-verify emit: error: --crash N:TEAM is for check; emit takes --crash N for every team, or the verify block's "
+                 "`assume crash <= N in TEAM`\n";
+    return kBadInput;
+  }
   std::unique_ptr<BuiltModel> built = buildModel(in);
   if (!built) return kBadInput;
   std::vector<std::string> inputs = filesRead(built->sources);

@@ -46,8 +46,28 @@ int main(int argc, char** argv) {
     cmd->add_option("input", in.input, "Mission file (.semo, with --strategy) or IR file (.ir)")->required();
     cmd->add_option("--strategy,-s", in.strategy, "Strategy file (.xml), for a mission");
     cmd->add_option("--robots,-r", in.robotsDir, "Folder of URDF files");
-    cmd->add_option("--crash", in.crash, "Up to N robots of each team may crash (overrides the verify block)")
-        ->check(CLI::Range(0, 100000));
+    // --crash N (every team) or N:TEAM (that team), repeatable.
+    cmd->add_option_function<std::vector<std::string>>(
+           "--crash",
+           [&in](const std::vector<std::string>& specs) {
+             for (const std::string& spec : specs) {
+               const std::size_t colon = spec.find(':');
+               const int n = std::stoi(spec.substr(0, colon));
+               if (colon == std::string::npos) in.crash = n;
+               else in.crashPerTeam[spec.substr(colon + 1)] = n;
+             }
+           },
+           "Up to N robots of each team may crash; N:TEAM for one team (repeatable); overrides the verify block")
+        ->check(CLI::Validator(
+            [](std::string& spec) -> std::string {
+              const std::size_t colon = spec.find(':');
+              const std::string n = spec.substr(0, colon);
+              if (n.empty() || n.size() > 6 || n.find_first_not_of("0123456789") != std::string::npos) return "'" + spec + "': give N or N:TEAM (N from 0 to 100000)";
+              if (std::stoi(n) > 100000) return "'" + spec + "': at most 100000";
+              if (colon != std::string::npos && colon + 1 == spec.size()) return "'" + spec + "': a team name after ':'";
+              return {};
+            },
+            "N[:TEAM]"));
     cmd->add_option("--loss", in.loss,
                     "Which messages may be lost: none, all, or publish, events, knowledge, heartbeats, one or a list (events,publish); "
                     "overrides the verify block")

@@ -66,7 +66,7 @@ int runReplay(const ReplayOptions& options) {
   }
   std::optional<model::MissionModel> mission = loadMission({in.input, *in.strategy, in.robotsDir}, sources, diags);
   std::optional<Translation> translation;
-  if (mission) translation = translateMission(*mission, TranslationOptions{in.crash, in.loss, in.fairLoss}, sources, diags);
+  if (mission) translation = translateMission(*mission, TranslationOptions{in.crash, in.loss, in.fairLoss, in.crashPerTeam}, sources, diags);
   if (!translation) return fail();
   runtime::MissionTables tables = codegen::project(*mission, *translation, sources);
   tables.modelFingerprint = checker::modelFingerprint(translation->model);

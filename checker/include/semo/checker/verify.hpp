@@ -10,6 +10,7 @@
 // conjuncts, Z3 over every crash set) and its coverage in words; the searches' figures; and, when
 // asked, every robot's task graph with its analysis and proven buffer bounds.
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -36,6 +37,7 @@ struct VerifyOptions {
   LivenessOptions liveness; // slicing; with the smt engine the whole product is never searched
   SmtOptions smt;           // the smt engine (smt.maxDepth is set from limits.maxDepth when that is bounded)
   std::optional<int> crashOverride;  // --crash N: the budget group formation is decided for (smt)
+  std::map<std::string, int> crashPerTeam;  // --crash N:TEAM, before crashOverride
   bool taskGraphs = false;  // generate and analyse every robot's task graph (needs the mission)
   // --prop: only the group formation verdicts whose names match one of these (all when empty); the
   // model's own properties are chosen with selectProperties before verify().

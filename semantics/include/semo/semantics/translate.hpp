@@ -1,5 +1,6 @@
 #pragma once
 // MissionModel + fault assumptions -> IR (specs/semantics.md). One translation serves every mission.
+#include <map>
 #include <optional>
 #include <string>
 
@@ -14,6 +15,7 @@ struct TranslationOptions {
   std::optional<int> crashOverride;         // --crash N: every team may lose up to N robots
   std::optional<std::string> lossOverride;  // --loss none|publish|events|knowledge|heartbeats|all, or a list: events,publish
   std::optional<bool> fairLossOverride;     // --fair-loss / --unfair-loss
+  std::map<std::string, int> crashPerTeam;  // --crash N:TEAM: that team may lose up to N robots (before crashOverride)
 };
 
 // The IR of a mission and what its variables and rules mean (lowering.hpp), index for index.
