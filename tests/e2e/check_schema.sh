@@ -12,6 +12,26 @@ run formation_smt specs/defects/lone_lidar.semo -s specs/defects/strategy.xml --
 run lasso tests/e2e/ir/retry_delivery_weak.ir
 run vacuous tests/e2e/inputs/vacuous_checks.semo -s tests/diagnostics/common/strategy.xml
 run selection specs/examples/swarm/swarm3.semo -s specs/examples/swarm/strategy.xml --prop mode_agreement --loss events --crash 1:Swarm
+mkdir -p "$work/lint"
+"$semo" lint specs/examples/scouting/scouting.semo -s specs/examples/scouting/strategy.xml --json > "$work/lint/clean.json" || true
+"$semo" lint tests/e2e/inputs/undefined_mode.semo -s specs/examples/scouting/strategy.xml --json > "$work/lint/errors.json" || true
+"$semo" lint tests/diagnostics/common/mission.semo -s tests/diagnostics/strategy/urdf_file_missing.xml --json > "$work/lint/notes.json" || true
+python3 - "$src/specs/lint.schema.json" "$work/lint" <<'PY'
+import json, pathlib, sys
+import jsonschema
+schema = json.load(open(sys.argv[1]))
+jsonschema.Draft202012Validator.check_schema(schema)
+validator = jsonschema.Draft202012Validator(schema)
+files = sorted(pathlib.Path(sys.argv[2]).glob("*.json"))
+assert len(files) == 3, files
+noted = 0
+for f in files:
+    doc = json.load(open(f))
+    errors = list(validator.iter_errors(doc))
+    assert not errors, f"{f.name}: {errors[0].message} at {list(errors[0].path)}"
+    noted += sum(1 for d in doc["diagnostics"] if d.get("notes"))
+assert noted >= 1, "a diagnostic with a note was read"
+PY
 python3 - "$src/specs/check.schema.json" "$work" <<'PY'
 import json, pathlib, sys
 import jsonschema
@@ -27,5 +47,5 @@ for f in files:
 broken = json.load(open(files[0]))
 del broken["properties"][0]["verdict"]
 assert list(validator.iter_errors(broken)), "a property without its verdict must fail"
-print(f"SCHEMA-VALIDATES: {len(files)} outputs")
+print(f"SCHEMA-VALIDATES: {len(files)} outputs (and 3 of lint)")
 PY
