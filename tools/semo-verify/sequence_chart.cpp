@@ -1,4 +1,5 @@
 #include "sequence_chart.hpp"
+#include "svg_text.hpp"
 
 #include <algorithm>
 #include <map>
@@ -11,17 +12,6 @@ namespace {
 
 constexpr double kRow = 26, kTop = 70, kTextWidth = 470, kLane = 120, kMargin = 16;
 
-std::string escaped(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
-  }
-  return out;
-}
 
 std::string shortened(const std::string& text, std::size_t max) {
   return text.size() <= max ? text : text.substr(0, max - 3) + "...";
@@ -79,14 +69,14 @@ std::string sequenceChartSvg(const ir::Model& model, const checker::Trace& trace
       "<marker id=\"lost\" viewBox=\"0 0 10 10\" refX=\"5\" refY=\"5\" markerWidth=\"9\" markerHeight=\"9\">"
       "<path d=\"M1,1 L9,9 M9,1 L1,9\" stroke=\"#c0392b\" stroke-width=\"2\"/></marker></defs>\n",
       width, height);
-  out += fmt::format("<text x=\"{}\" y=\"22\" font-size=\"14\" font-weight=\"bold\">{}</text>\n", kMargin, escaped(title));
+  out += fmt::format("<text x=\"{}\" y=\"22\" font-size=\"14\" font-weight=\"bold\">{}</text>\n", kMargin, svgEscaped(title));
 
   // Lifelines with their robots' names.
   for (std::size_t lane = 0; lane < lanes; ++lane) {
     const double x = laneX(lane < robots ? static_cast<std::int32_t>(lane) : -1);
     const std::string name = lane < robots ? model.robots[lane] : "network / world";
     out += fmt::format("<text class=\"robot\" x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\" font-weight=\"bold\">{}</text>\n", x, kTop - 16,
-                       escaped(shortened(name, 18)));
+                       svgEscaped(shortened(name, 18)));
     out += fmt::format("<line class=\"lifeline\" x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{0:.1f}\" y2=\"{2:.1f}\" stroke=\"#999\"/>\n", x, kTop - 8,
                        kTop + kRow * static_cast<double>(steps) + 8);
   }
@@ -132,8 +122,8 @@ std::string sequenceChartSvg(const ir::Model& model, const checker::Trace& trace
     const double y = rowY(k), x = laneX(rule.robot);
     const std::string robot = rule.robot >= 0 && static_cast<std::size_t>(rule.robot) < robots ? model.robots[static_cast<std::size_t>(rule.robot)] : "-";
     const std::string line = rule.origin.line > 0 ? fmt::format("  :{}", rule.origin.line) : "";
-    out += fmt::format("<text class=\"step\" x=\"{:.1f}\" y=\"{:.1f}\">{}. [{}] {}{}</text>\n", kMargin, y + 4, k + 1, escaped(robot),
-                       escaped(shortened(rule.label, 62)), line);
+    out += fmt::format("<text class=\"step\" x=\"{:.1f}\" y=\"{:.1f}\">{}. [{}] {}{}</text>\n", kMargin, y + 4, k + 1, svgEscaped(robot),
+                       svgEscaped(shortened(rule.label, 62)), line);
     out += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#eee\"/>\n", kMargin + kTextWidth - 6, y,
                        laneX(0) - 8, y);
     if (rule.kind == ir::RuleKind::Crash) {
@@ -157,7 +147,7 @@ std::string sequenceChartSvg(const ir::Model& model, const checker::Trace& trace
       const double bx = laneX(var.robot), w = std::min(kLane - 10, 7.0 * static_cast<double>(box.size()) + 10);
       out += fmt::format("<rect class=\"state\" x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"16\" rx=\"3\" fill=\"#e8f4e8\" "
                          "stroke=\"#27ae60\"/>\n<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\" font-size=\"10\">{}</text>\n",
-                         bx - w / 2, y + 5, w, bx, y + 17, escaped(shortened(box, 16)));
+                         bx - w / 2, y + 5, w, bx, y + 17, svgEscaped(shortened(box, 16)));
     }
   }
   for (const Arrow& a : arrows) {
@@ -165,14 +155,14 @@ std::string sequenceChartSvg(const ir::Model& model, const checker::Trace& trace
     out += fmt::format("<line class=\"{}\" x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"{}\" stroke-width=\"1.3\"{} "
                        "marker-end=\"url(#{})\"><title>{}</title></line>\n",
                        a.lost ? "message lost" : "message", x1, y1, x2, y2, a.lost ? "#c0392b" : "#1f4e99",
-                       a.lost ? " stroke-dasharray=\"5,3\"" : "", a.lost ? "lost" : "head", escaped(a.what));
+                       a.lost ? " stroke-dasharray=\"5,3\"" : "", a.lost ? "lost" : "head", svgEscaped(a.what));
   }
   const double endY = kTop + kRow * static_cast<double>(steps) + 34;
   const std::string ending = trace.loopStart < steps ? fmt::format("then back to the state before step {}: the loop repeats for ever", trace.loopStart + 1)
                              : trace.loopStart == steps ? std::string("then the run stays in this state for ever")
                              : trace.kind == "deadlock" ? std::string("then no rule is enabled: a deadlock")
                                                         : "then " + trace.property + " does not hold";
-  out += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-style=\"italic\">{}</text>\n</svg>\n", kMargin, endY, escaped(ending));
+  out += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-style=\"italic\">{}</text>\n</svg>\n", kMargin, endY, svgEscaped(ending));
   return out;
 }
 
