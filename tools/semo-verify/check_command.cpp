@@ -2,11 +2,13 @@
 // Report, or write the model out.
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <mutex>
+#include <regex>
 #include <thread>
 #include <nlohmann/json.hpp>
 
@@ -60,6 +62,18 @@ std::unique_ptr<BuiltModel> buildModel(const ModelInput& in) {
 }
 
 namespace {
+
+// On a terminal, a phase that says how far it is ("depth 4 of 5", "(3 of 7)") gets a bar for it:
+// "[######----] ".
+std::string progressBar(const std::string& what) {
+  static const std::regex fraction(R"(([0-9]+) of ([0-9]+))");
+  std::smatch m;
+  if (!std::regex_search(what, m, fraction)) return {};
+  const double done = std::stod(m[1].str()), all = std::stod(m[2].str());
+  if (!(all > 0)) return {};
+  const auto filled = static_cast<std::size_t>(std::clamp(10.0 * done / all, 0.0, 10.0));
+  return "[" + std::string(filled, '#') + std::string(10 - filled, '-') + "] ";
+}
 
 // --props FILE: per line a property name or glob, or `check a, b` as in the verify block; `#`
 // starts a comment. A `property` line would need the mission's formula syntax: refused, with its
@@ -130,8 +144,8 @@ checker::VerifyOptions verifyOptions(const CheckOptions& options) {
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
       if (seconds < 2.0) return;
       const std::lock_guard<std::mutex> hold(*lock);
-      std::cerr << (onTerminal ? "\r\x1b[K" : "") << "[" << static_cast<long long>(seconds) << " s] " << what << (onTerminal ? "" : "\n")
-                << std::flush;
+      std::cerr << (onTerminal ? "\r\x1b[K" + progressBar(what) : std::string()) << "[" << static_cast<long long>(seconds) << " s] " << what
+                << (onTerminal ? "" : "\n") << std::flush;
     };
     v.limits.onPhase = phase;
     v.smt.onPhase = phase;
