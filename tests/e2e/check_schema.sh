@@ -32,6 +32,28 @@ for f in files:
     noted += sum(1 for d in doc["diagnostics"] if d.get("notes"))
 assert noted >= 1, "a diagnostic with a note was read"
 PY
+mkdir -p "$work/sdf" "$work/analyze"
+"$semo" sdf specs/examples/scouting/scouting.semo -s specs/examples/scouting/strategy.xml --json > "$work/sdf/scouting.json" || true
+"$semo" sdf --graph tests/e2e/sdf/taskgraph_deadlock.json --json > "$work/sdf/deadlock.json" || true
+"$semo" analyze specs/examples/quantitative/gamble.ir --json --rounds 3 > "$work/analyze/gamble.json" || true
+"$semo" analyze specs/examples/quantitative/leader_sync_4_4.ir --json --reward pick --max-states 100 --runs 500 > "$work/analyze/estimated.json" 2>/dev/null || true
+"$semo" analyze specs/examples/scouting/scouting.semo -s specs/examples/scouting/strategy.xml --loss-prob 0.2 --rounds 2 --json > "$work/analyze/mission.json" || true
+"$semo" analyze specs/examples/swarm/swarm10.semo -s specs/examples/swarm/strategy.xml --loss-prob 0.6 --rounds 2 --max-states 1000 --runs 200 --json > "$work/analyze/swarm.json" 2>/dev/null || true
+for kind in sdf analyze; do
+python3 - "$src/specs/$kind.schema.json" "$work/$kind" <<'PY'
+import json, pathlib, sys
+import jsonschema
+schema = json.load(open(sys.argv[1]))
+jsonschema.Draft202012Validator.check_schema(schema)
+validator = jsonschema.Draft202012Validator(schema)
+files = sorted(pathlib.Path(sys.argv[2]).glob("*.json"))
+assert len(files) >= 2, files
+for f in files:
+    doc = json.load(open(f))
+    errors = list(validator.iter_errors(doc))
+    assert not errors, f"{sys.argv[1]} {f.name}: {errors[0].message} at {list(errors[0].path)}"
+PY
+done
 python3 - "$src/specs/check.schema.json" "$work" <<'PY'
 import json, pathlib, sys
 import jsonschema
@@ -47,5 +69,5 @@ for f in files:
 broken = json.load(open(files[0]))
 del broken["properties"][0]["verdict"]
 assert list(validator.iter_errors(broken)), "a property without its verdict must fail"
-print(f"SCHEMA-VALIDATES: {len(files)} outputs (and 3 of lint)")
+print(f"SCHEMA-VALIDATES: {len(files)} outputs (and 3 of lint, 2 of sdf, 4 of analyze)")
 PY
