@@ -323,7 +323,12 @@ std::vector<std::string> Report::unproven() const {
 void addTaskGraphs(Report& report, std::vector<sdf::TaskGraph> graphs, const sdf::BoundsOptions& bounds) {
   report.taskGraphAssumptions = kTaskGraphAssumptions;
   sdf::ScenarioCache cache;  // robots of one type in one role: each distinct scenario graph once
-  for (sdf::TaskGraph& g : graphs) {
+  for (std::size_t i = 0; i < graphs.size(); ++i) {
+    sdf::TaskGraph& g = graphs[i];
+    if (bounds.onPhase) {
+      bounds.onPhase("sdf: " + g.robot + " (" + std::to_string(i + 1) + " of " + std::to_string(graphs.size()) + "): " +
+                     std::to_string(g.scenarios.size()) + " scenarios, buffer fronts and proofs");
+    }
     sdf::TaskGraphAnalysis analysis = sdf::analyseTaskGraph(g, bounds, &cache);
     report.taskGraphs.push_back({std::move(g), std::move(analysis)});
   }

@@ -1,5 +1,6 @@
 // `sdf MISSION --strategy S` (a task graph per robot) and `sdf --graph G.json` (one task graph):
 // every scenario analysed, buffer bounds chosen and proven (sdf/task_graph_analysis.hpp).
+#include <chrono>
 #include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -218,6 +219,13 @@ int runTaskGraphs(const SdfOptions& options) {
   sdf::BoundsOptions bo;
   bo.maxDistributions = options.maxDistributions;
   bo.timeoutMs = options.proofTimeoutMs;
+  if (!options.json) {
+    // A robot's analysis said as it starts, once the run has taken two seconds.
+    bo.onPhase = [started = std::chrono::steady_clock::now()](const std::string& what) {
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+      if (seconds >= 2.0) std::cerr << "[" << static_cast<long long>(seconds) << " s] " << what << "\n";
+    };
+  }
   checker::Report report;
   checker::addTaskGraphs(report, std::move(graphs), bo);
   json robots = json::array();

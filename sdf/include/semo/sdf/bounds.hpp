@@ -17,6 +17,7 @@
 //   self-timed execution (throughput.hpp) with it is longer; that is a computation, not a Z3
 //   proof, and the result says which of the two each channel got.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -61,6 +62,8 @@ struct BoundsOptions {
   // nine tenths of the time, so those who only run the graph (the simulator) leave them out; the
   // minimality is then Unknown, with a note saying it was not asked for.
   bool proveMinimality = true;
+  // Told as each robot's graph is analysed (for progress lines); may be empty.
+  std::function<void(const std::string&)> onPhase;
 };
 
 struct ScenarioBounds {
