@@ -1,4 +1,5 @@
 #include "commands.hpp"
+#include "semo/semantics/ir_text.hpp"
 
 #include <filesystem>
 #include <fstream>
@@ -88,6 +89,25 @@ int runParse(const ParseOptions& options) {
     diags.error({}, why);
     diags.print(std::cerr);
     return kBadInput;
+  }
+  // An IR model (by its extension or its first word) is read as IR, not as a mission.
+  const std::string& text = sources.text(file);
+  const std::size_t first = text.find_first_not_of(" \t\r\n");
+  if (options.mission.ends_with(".ir") || (first != std::string::npos && text.compare(first, 7, "semo-ir") == 0)) {
+    std::optional<ir::Model> model = ir::parseText(sources, file, diags);
+    diags.sortByPosition();
+    diags.print(std::cerr);
+    printSummaryLine(diags);
+    if (!model) return kBadInput;
+    if (options.json) {
+      std::cerr << "semo-verify: error: --json prints a mission's syntax tree; an IR file has none (`export --ir` writes IR)\n";
+      return kBadInput;
+    }
+    std::cout << options.mission << ": parsed as an IR model: " << plural(model->robots.size(), "robot") << ", "
+              << plural(model->variables.size(), "variable") << ", " << plural(model->rules.size(), "rule") << ", "
+              << plural(model->invariants.size(), "invariant") << ", " << model->properties.size()
+              << (model->properties.size() == 1 ? " LTL property" : " LTL properties") << "\n";
+    return kOk;
   }
   ast::Mission mission = parseMission(sources, file, diags);
   diags.sortByPosition();
