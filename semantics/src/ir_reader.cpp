@@ -555,4 +555,15 @@ std::optional<Model> parseText(const SourceManager& sources, FileId file, Diagno
   return Reader(sources, file, diags).run();
 }
 
+bool looksLikeIr(const std::string& text) {
+  std::size_t at = 0;
+  while (at < text.size()) {
+    at = text.find_first_not_of(" \t\r\n", at);
+    if (at == std::string::npos) return false;
+    if (text[at] != '#') return text.compare(at, 7, "semo-ir") == 0;
+    at = text.find('\n', at);  // a comment line
+  }
+  return false;
+}
+
 }  // namespace semo::ir

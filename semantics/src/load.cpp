@@ -1,6 +1,7 @@
 #include "semo/semantics/load.hpp"
 
 #include "semo/frontend/parser.hpp"
+#include "semo/semantics/ir_text.hpp"
 #include "semo/semantics/elaborate.hpp"
 
 namespace semo {
@@ -12,6 +13,12 @@ std::optional<model::MissionModel> loadMission(const MissionInputs& inputs, Sour
   FileId strategyFile = sources.load(inputs.strategy, why);
   if (strategyFile == kNoFile) diags.error({}, why);
   if (diags.hasErrors()) return std::nullopt;
+  // An IR model given where a mission is expected: said at once, not as a page of syntax errors.
+  if (ir::looksLikeIr(sources.text(missionFile))) {
+    diags.error({{missionFile, 1, 1}, 7}, "this is an IR model, not a mission: `check`, `analyze`, `export`, `show` and `parse` read IR "
+                                          "files; this command needs a mission (.semo) and its strategy");
+    return std::nullopt;
+  }
 
   ast::Mission mission = parseMission(sources, missionFile, diags);
   strategy::Strategy strategy = strategy::readStrategy(sources, strategyFile, diags);

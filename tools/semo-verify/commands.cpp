@@ -91,9 +91,7 @@ int runParse(const ParseOptions& options) {
     return kBadInput;
   }
   // An IR model (by its extension or its first word) is read as IR, not as a mission.
-  const std::string& text = sources.text(file);
-  const std::size_t first = text.find_first_not_of(" \t\r\n");
-  if (options.mission.ends_with(".ir") || (first != std::string::npos && text.compare(first, 7, "semo-ir") == 0)) {
+  if (options.mission.ends_with(".ir") || ir::looksLikeIr(sources.text(file))) {
     std::optional<ir::Model> model = ir::parseText(sources, file, diags);
     diags.sortByPosition();
     diags.print(std::cerr);

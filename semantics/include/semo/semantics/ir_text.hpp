@@ -14,6 +14,9 @@ std::string toText(const Model& model, const Expr& e);
 std::string toText(const Model& model, const Ltl& f);  // atoms in braces: always ({x == 1} => eventually {y > 0})
 
 // Parses a model; errors (with positions) go to `diags`; nullopt if there was any.
+// Whether a text is an IR model: its first word, after blank lines and `#` comments, is `semo-ir`.
+bool looksLikeIr(const std::string& text);
+
 std::optional<Model> parseText(const SourceManager& sources, FileId file, DiagnosticEngine& diags);
 
 }  // namespace semo::ir
