@@ -14,8 +14,14 @@ std::optional<model::MissionModel> loadMission(const MissionInputs& inputs, Sour
   if (strategyFile == kNoFile) diags.error({}, why);
   if (diags.hasErrors()) return std::nullopt;
   // An IR model given where a mission is expected: said at once, not as a page of syntax errors.
-  if (ir::looksLikeIr(sources.text(missionFile))) {
-    diags.error({{missionFile, 1, 1}, 7}, "this is an IR model, not a mission: `check`, `analyze`, `export`, `show` and `parse` read IR "
+  if (const std::string& text = sources.text(missionFile); ir::looksLikeIr(text)) {
+    // The caret under `semo-ir`, past the comments before it.
+    std::uint32_t line = 1, column = 1;
+    for (std::size_t at = text.find("semo-ir"), i = 0; i < at && at != std::string::npos; ++i) {
+      if (text[i] == '\n') ++line, column = 1;
+      else ++column;
+    }
+    diags.error({{missionFile, line, column}, 7}, "this is an IR model, not a mission: `check`, `analyze`, `export`, `show` and `parse` read IR "
                                           "files; this command needs a mission (.semo) and its strategy");
     return std::nullopt;
   }
