@@ -119,7 +119,7 @@ std::unique_ptr<ast::Cond> Parser::parseAndCond() {
 }
 
 std::unique_ptr<ast::Cond> Parser::parseNotCond() {
-  const Nested deeper(*this);
+  const NestingGuard level = deeper();
   auto node = std::make_unique<ast::Cond>();
   node->range = peek().range;
   if (accept(Tok::KwNot)) {

@@ -6,6 +6,7 @@
 
 #include "semo/frontend/ast.hpp"
 #include "semo/frontend/lexer.hpp"
+#include "semo/frontend/nesting.hpp"
 
 namespace semo::detail {
 
@@ -20,26 +21,11 @@ class Parser {
  private:
   friend class ParserTest;
   static constexpr std::size_t kMaxErrors = 50;
-  // How deep statements, conditions and formulas may nest (as compilers limit bracket depth: clang's
-  // -fbracket-depth is 256 too): past it, an error, never a stack overflow.
-  static constexpr std::size_t kMaxNesting = 256;
-
-  // One level deeper for as long as it lives; past kMaxNesting, a syntax error at the current token.
-  class Nested {
-   public:
-    explicit Nested(Parser& parser) : parser_(parser) {
-      if (++parser_.depth_ > kMaxNesting) {
-        --parser_.depth_;
-        parser_.fail(parser_.peek(), "nested too deeply (limit " + std::to_string(kMaxNesting) + ")");
-      }
-    }
-    ~Nested() { --parser_.depth_; }
-    Nested(const Nested&) = delete;
-    Nested& operator=(const Nested&) = delete;
-
-   private:
-    Parser& parser_;
-  };
+  // One level deeper in statements, conditions and formulas (nesting.hpp): past the limit, a
+  // syntax error at the current token.
+  [[nodiscard]] NestingGuard deeper() {
+    return NestingGuard(depth_, [this] { fail(peek(), "nested too deeply (limit " + std::to_string(kMaxNesting) + ")"); });
+  }
 
   // token access
   [[nodiscard]] const Token& peek(std::size_t ahead = 0) const;
@@ -114,7 +100,7 @@ class Parser {
   std::vector<Token> tokens_;
   std::size_t pos_ = 0;
   std::size_t errorsAtStart_ = 0;
-  std::size_t depth_ = 0;  // Nested
+  std::size_t depth_ = 0;  // deeper()
 };
 
 SourceRange spanOf(const Token& first, const Token& last);

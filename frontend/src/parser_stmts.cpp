@@ -112,7 +112,7 @@ void Parser::parseTopic(ast::Stmt& stmt, bool withValue) {
 }
 
 ast::Stmt Parser::parseStatement(bool allowGroups) {
-  const Nested deeper(*this);
+  const NestingGuard level = deeper();
   ast::Stmt stmt;
   stmt.range = peek().range;
   switch (peek().kind) {

@@ -180,7 +180,7 @@ std::unique_ptr<ast::Ltl> Parser::parseLtlAnd() {
 }
 
 std::unique_ptr<ast::Ltl> Parser::parseLtlUnary() {
-  const Nested deeper(*this);
+  const NestingGuard level = deeper();
   auto node = std::make_unique<ast::Ltl>();
   node->range = peek().range;
   bool temporalWord = at(Tok::Ident) && peek(1).kind != Tok::Dot &&

@@ -6,6 +6,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "semo/frontend/nesting.hpp"
 #include "semo/semantics/ir_text.hpp"
 
 namespace semo::ir {
@@ -472,30 +473,17 @@ class Reader {
   }
 
   // ---- expressions, loosest first: ?:  =>  ||  &&  == !=  < <= > >=  + -  * / %  unary
-  // Nesting (parentheses, prefix operators, right-nested ?: and =>) is limited as a compiler limits
-  // bracket depth: past it an error, never a stack overflow. Long flat chains (a && b && ...) are
-  // read in a loop and are not limited.
-  static constexpr int kMaxExprNesting = 256;
-  class Deeper {
-   public:
-    explicit Deeper(Reader& r) : r_(r) {
-      if (++r_.exprDepth_ > kMaxExprNesting) {
-        --r_.exprDepth_;
-        r_.fail(r_.peek(), "expression nested too deeply (limit " + std::to_string(kMaxExprNesting) + ")");
-      }
-    }
-    ~Deeper() { --r_.exprDepth_; }
-    Deeper(const Deeper&) = delete;
-    Deeper& operator=(const Deeper&) = delete;
-
-   private:
-    Reader& r_;
-  };
+  // Nesting (parentheses, prefix operators, right-nested ?: and =>) is limited (nesting.hpp): past
+  // it an error, never a stack overflow. Long flat chains (a && b && ...) are read in a loop and are
+  // not limited.
+  [[nodiscard]] NestingGuard deeper() {
+    return NestingGuard(exprDepth_, [this] { fail(peek(), "expression nested too deeply (limit " + std::to_string(kMaxNesting) + ")"); });
+  }
 
   Expr expr() {
     Expr c = implication();
     if (!accept("?")) return c;
-    const Deeper deeper(*this);
+    const NestingGuard level = deeper();
     Expr t = expr();
     expect(":", "in 'c ? a : b'");
     Expr e = expr();
@@ -504,7 +492,7 @@ class Reader {
   Expr implication() {
     Expr l = binary(0);
     if (!accept("=>")) return l;
-    const Deeper deeper(*this);
+    const NestingGuard level = deeper();
     return Expr::binary(Op::Implies, std::move(l), implication());
   }
   Expr binary(int level) {
@@ -532,7 +520,7 @@ class Reader {
     }
   }
   Expr unary() {
-    const Deeper deeper(*this);  // one level per prefix operator or parenthesis
+    const NestingGuard level = deeper();  // one level per prefix operator or parenthesis
     if (accept("!")) return Expr::unary(Op::Not, unary());
     if (accept("-")) {
       // The writer writes the constant INT32_MIN as -2147483648, which Neg(2147483648) cannot be.
@@ -566,7 +554,7 @@ class Reader {
   DiagnosticEngine& diags_;
   std::vector<Token> tokens_;
   std::size_t pos_ = 0;
-  int exprDepth_ = 0;  // Deeper
+  std::size_t exprDepth_ = 0;  // deeper()
   Model model_;
   std::unordered_map<std::string, VarId> varIndex_;
   std::unordered_map<std::string, std::int32_t> robotIndex_;

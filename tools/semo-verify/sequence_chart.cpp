@@ -51,8 +51,8 @@ std::string sequenceChartSvg(const ir::Model& model, const checker::Trace& trace
     worldSteps = worldSteps || r < 0 || static_cast<std::size_t>(r) >= robots;
   }
   const std::size_t lanes = robots + (worldSteps || robots == 0 ? 1 : 0);
-  // Wide enough for the lanes and for the title (about 8 px a character at 14 px, bold).
-  const double width = std::max(kMargin + kTextWidth + kLane * static_cast<double>(lanes) + kMargin, 2 * kMargin + 8.0 * static_cast<double>(title.size()));
+  // Wide enough for the lanes and for the title (about 9 px a character at 14 px, bold).
+  const double width = std::max(kMargin + kTextWidth + kLane * static_cast<double>(lanes) + kMargin, 2 * kMargin + 9.0 * static_cast<double>(title.size()));
   const std::size_t steps = trace.steps.size();
   const double height = kTop + kRow * static_cast<double>(steps + 1) + 48;
   auto laneX = [&](std::int32_t robot) {
