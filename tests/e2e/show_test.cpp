@@ -55,6 +55,16 @@ TEST(Show, OneRobotsStepsWithTheOthersCounted) {
   EXPECT_NE(nobody.err.find("its robots: base, scout, mapper"), std::string::npos) << nobody.err;
 }
 
+// A check of some properties (--prop) keeps the whole model's fingerprint: its trace reads back.
+TEST(Show, ATraceFoundWithAPropertySelectionReadsBack) {
+  const fs::path dir = workDir("show_selection");
+  const std::string saved = (dir / "cex.json").string();
+  ASSERT_EQ(verify("check " + kDoubleReceive + " --prop deadlock_freedom --trace-out '" + saved + "'", dir).exit, 1);
+  CliRun show = verify("show '" + saved + "'", dir);
+  EXPECT_EQ(show.exit, 0) << show.err;
+  EXPECT_NE(show.out.find("counterexample for deadlock_freedom (deadlock): 11 steps"), std::string::npos) << show.out;
+}
+
 TEST(Show, TheTraceFileNeverReplacesAnInput) {
   const fs::path dir = workDir("show_no_overwrite");
   const fs::path mission = dir / "double_receive.semo";

@@ -189,7 +189,8 @@ int runCheck(const CheckOptions& options) {
   }
   // The fingerprint names the model, whichever of its properties are decided: a counterexample found
   // with --prop is read back (show, replay) on the whole model.
-  const std::string fingerprint = checker::modelFingerprint(*built->model);
+  // (Only a selection changes the model verify sees; without one, verify's own fingerprint is it.)
+  const std::string fingerprint = globs.empty() ? std::string() : checker::modelFingerprint(*built->model);
   if (!globs.empty()) {
     try {
       selected = checker::selectProperties(*built->model, globs);
@@ -204,7 +205,7 @@ int runCheck(const CheckOptions& options) {
   diags.sortByPosition();
   diags.print(std::cerr);
   if (!report) return kBadInput;
-  report->modelFingerprint = fingerprint;
+  if (!fingerprint.empty()) report->modelFingerprint = fingerprint;
   const bool searchedLong = report && (report->safety.seconds >= 1.0 || report->liveness.seconds >= 1.0);
   if (searchedLong && !options.json && isatty(STDERR_FILENO) != 0) std::cerr << "\n";  // after the progress line
   nlohmann::json json = reportJson(*report, *built->model, options.model);
