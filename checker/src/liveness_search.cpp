@@ -140,11 +140,13 @@ Outcome decide(const CompiledModel& cm, const ControlFacts& facts, std::size_t k
     o.method.states = o.states;
     return o;
   }
-  detail::SlicedOutcome sliced = detail::checkSliced(cm, facts, k, limits, options.sliceStates, options.symbolic);
+  detail::SlicedOutcome sliced = detail::checkSliced(cm, facts, k, limits, options.sliceStates, options.symbolic, options.walks);
   LivenessMethod method{true, sliced.keptVariables, sliced.refinements, sliced.states, {}};
   method.symbolic = sliced.symbolic;
   method.symbolicStates = sliced.symbolicStates;
   method.hunted = sliced.hunted;
+  method.walked = sliced.walked;
+  method.walks = sliced.walks;
   Outcome out{sliced.property, sliced.states, sliced.transitions, true, {}, sliced.reduced, {}, method};
   if (sliced.property.verdict == Verdict::Proven) return out;
   if (sliced.property.verdict == Verdict::Violated) {

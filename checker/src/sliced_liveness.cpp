@@ -19,6 +19,7 @@
 #include "semo/checker/lasso_check.hpp"
 #include "semo/checker/liveness_search.hpp"
 #include "semo/checker/slicing.hpp"
+#include "lasso_walks.hpp"
 #include "slice_lasso_rebuild.hpp"
 
 namespace semo::checker::detail {
@@ -169,6 +170,27 @@ SlicedOutcome refineSlices(const CompiledModel& full, const ControlFacts& facts,
 // hides among them. The hunt looks at the property's whole cone instead (exact), without the
 // crashes and environment steps no fairness asks for, and for a loop that senses nothing (settled
 // on any world): every fair lasso found there is one of the model's, rebuilt on it as a slice's.
+// The walks' time per property: a lasso the walks can find turns up within seconds (scouting's
+// mode_agreement in under one), and a model without one costs no more than this.
+constexpr double kWalkSeconds = 10;
+
+void walkForLasso(const CompiledModel& full, std::size_t property, const SearchLimits& limits, SlicedOutcome& out) {
+  const ir::Property& prop = full.model().properties.at(property);
+  if (limits.onPhase) limits.onPhase("liveness: " + prop.name + ": no slice decided; random walks hunting a fair loop");
+  LassoWalkLimits walks;
+  walks.seconds = kWalkSeconds;
+  const LassoWalkOutcome r = findLassoByWalks(full.model(), property, walks);
+  out.walkSeconds = r.seconds;
+  if (r.lasso) {
+    out.property.verdict = Verdict::Violated;
+    out.property.counterexample = *r.lasso;
+    out.walked = true;
+    out.walks = r.walks;
+    return;
+  }
+  out.why += "; " + r.why;
+}
+
 void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLimits& limits, SlicedOutcome& out,
                 const ControlFacts* facts) {
   const ControlFacts none{{}, {}, 0, 0};
@@ -212,8 +234,9 @@ void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLim
 }
 
 SlicedOutcome checkSliced(const CompiledModel& full, const ControlFacts& facts, std::size_t property, const SearchLimits& limits,
-                          std::uint64_t sliceStates, bool symbolic) {
+                          std::uint64_t sliceStates, bool symbolic, bool walks) {
   SlicedOutcome out = refineSlices(full, facts, property, limits, sliceStates, symbolic);
+  if (walks && out.property.verdict == Verdict::Unknown) walkForLasso(full, property, limits, out);
   if (symbolic && out.property.verdict == Verdict::Unknown) {
     if (limits.onPhase) limits.onPhase("liveness: " + full.model().properties[property].name + ": no slice decided; hunting the property's cone for a fair loop (symbolically)");
     huntOnCone(full, property, limits, out, &facts);

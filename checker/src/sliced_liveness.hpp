@@ -26,6 +26,11 @@ struct SlicedOutcome {
   // slice decided; keptVariables is then the cone's.
   bool hunted = false;
   double symbolicSeconds = 0;     // spent in symbolic searches (slices and hunt)
+  // The violation was found by random walks on the whole model (lasso_walks.hpp), after no slice
+  // decided, in the `walks`-th walk.
+  bool walked = false;
+  std::uint32_t walks = 0;
+  double walkSeconds = 0;
 };
 
 // Each slice's product is searched within `sliceStates` states (and limits.maxStates): a slice
@@ -37,8 +42,12 @@ struct SlicedOutcome {
 void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLimits& limits, SlicedOutcome& out,
                 const ControlFacts* facts = nullptr);
 
+// Random walks on the whole model for a fair violation (lasso_walks.hpp): a lasso found becomes
+// `out`'s verdict (walked); otherwise out.why says how many walks found none. Never a proof.
+void walkForLasso(const CompiledModel& full, std::size_t property, const SearchLimits& limits, SlicedOutcome& out);
+
 // `facts` are the model's control facts (slicing.hpp), computed once for all its properties.
 SlicedOutcome checkSliced(const CompiledModel& full, const ControlFacts& facts, std::size_t property, const SearchLimits& limits,
-                          std::uint64_t sliceStates, bool symbolic);
+                          std::uint64_t sliceStates, bool symbolic, bool walks = true);
 
 }  // namespace semo::checker::detail

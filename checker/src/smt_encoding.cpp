@@ -47,7 +47,11 @@ z3::expr SmtEncoding::sameState(std::size_t a, std::size_t b) {
   return z3::mk_and(parts);
 }
 
-z3::expr SmtEncoding::transition(std::size_t k) {
+z3::expr SmtEncoding::transition(std::size_t k) { return transition(k, false); }
+
+z3::expr SmtEncoding::transitionOrStay(std::size_t k) { return transition(k, true); }
+
+z3::expr SmtEncoding::transition(std::size_t k, bool orStay) {
   state(k + 1);
   const z3::expr_vector& now = states_[k];
   const z3::expr_vector& next = states_[k + 1];
@@ -56,7 +60,15 @@ z3::expr SmtEncoding::transition(std::size_t k) {
   // Each variable's next value is one choice over the outcomes that assign it (the others keep it):
   // far smaller than an equation per variable per outcome, which made BMC several times slower.
   z3::expr_vector parts(ctx_);
-  parts.push_back(act >= 0 && act < static_cast<int>(actions_.size()));
+  parts.push_back(act >= (orStay ? -1 : 0) && act < static_cast<int>(actions_.size()));
+  if (orStay) {
+    // Staying (no outcome chosen: every variable keeps its value) only where no fair rule is enabled.
+    z3::expr_vector fairGuards(ctx_);
+    for (const ir::Rule& r : m_.rules) {
+      if (r.weaklyFair || r.stronglyFair) fairGuards.push_back(truth(r.guard, k));
+    }
+    parts.push_back(z3::implies(act == -1, !z3::mk_or(fairGuards)));
+  }
   std::vector<z3::expr> nextValue;
   nextValue.reserve(m_.variables.size());
   for (ir::VarId v = 0; v < m_.variables.size(); ++v) nextValue.push_back(now[static_cast<int>(v)]);
@@ -72,26 +84,28 @@ z3::expr SmtEncoding::transition(std::size_t k) {
 }
 
 z3::expr SmtEncoding::transitionByCases(std::size_t k) {
+  z3::expr_vector cases(ctx_);
+  for (std::size_t a = 0; a < actions_.size(); ++a) cases.push_back(stepBy(a, k));
+  return z3::mk_or(cases);
+}
+
+z3::expr SmtEncoding::stepBy(std::size_t action, std::size_t k) {
   state(k + 1);
   const z3::expr_vector& now = states_[k];
   const z3::expr_vector& next = states_[k + 1];
-  z3::expr_vector cases(ctx_);
+  const Action& a = actions_[action];
+  const ir::Rule& rule = m_.rules[a.rule];
+  z3::expr_vector parts(ctx_);
+  parts.push_back(truth(rule.guard, k));
   std::vector<char> assigned(m_.variables.size());
-  for (const Action& a : actions_) {
-    const ir::Rule& rule = m_.rules[a.rule];
-    z3::expr_vector parts(ctx_);
-    parts.push_back(truth(rule.guard, k));
-    std::fill(assigned.begin(), assigned.end(), 0);
-    for (const ir::Assignment& as : rule.branches[a.branch].assignments) {
-      assigned[as.var] = 1;
-      parts.push_back(next[static_cast<int>(as.var)] == value(as.value, k));
-    }
-    for (ir::VarId v = 0; v < m_.variables.size(); ++v) {
-      if (!assigned[v]) parts.push_back(next[static_cast<int>(v)] == now[static_cast<int>(v)]);
-    }
-    cases.push_back(z3::mk_and(parts));
+  for (const ir::Assignment& as : rule.branches[a.branch].assignments) {
+    assigned[as.var] = 1;
+    parts.push_back(next[static_cast<int>(as.var)] == value(as.value, k));
   }
-  return z3::mk_or(cases);
+  for (ir::VarId v = 0; v < m_.variables.size(); ++v) {
+    if (!assigned[v]) parts.push_back(next[static_cast<int>(v)] == now[static_cast<int>(v)]);
+  }
+  return z3::mk_and(parts);
 }
 
 z3::expr SmtEncoding::enabled(std::size_t k) {

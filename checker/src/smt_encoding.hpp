@@ -25,9 +25,14 @@ class SmtEncoding {
   [[nodiscard]] z3::expr initial(std::size_t k);          // step k is the initial state
   [[nodiscard]] z3::expr inRange(std::size_t k);          // every variable within its declared range
   [[nodiscard]] z3::expr transition(std::size_t k);       // step k -> k+1 by one rule outcome
+  // The same, or (action(k) = -1) the state stays where no fair rule is enabled: time passes, as
+  // liveness reads a run (specs/ir.md, "Properties").
+  [[nodiscard]] z3::expr transitionOrStay(std::size_t k);
   // The same relation as one case per rule outcome, without action(k): larger, but the form IC3
   // (Spacer) projects best (several times faster on the examples than transition()).
   [[nodiscard]] z3::expr transitionByCases(std::size_t k);
+  // Step k -> k+1 by the rule outcome actions()[action]: its guard, its assignments, the rest kept.
+  [[nodiscard]] z3::expr stepBy(std::size_t action, std::size_t k);
   [[nodiscard]] z3::expr holds(const ir::Expr& e, std::size_t k);  // e is true (non-zero) at step k
   [[nodiscard]] z3::expr enabled(std::size_t k);          // some rule is enabled at step k
   [[nodiscard]] z3::expr sameState(std::size_t a, std::size_t b);
@@ -38,6 +43,7 @@ class SmtEncoding {
   [[nodiscard]] const std::vector<Action>& actions() const { return actions_; }
 
  private:
+  z3::expr transition(std::size_t k, bool orStay);
   z3::expr value(const ir::Expr& e, std::size_t k);   // as an integer
   z3::expr truth(const ir::Expr& e, std::size_t k);   // as a Boolean
 

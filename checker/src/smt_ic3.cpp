@@ -6,20 +6,7 @@ namespace semo::checker::detail {
 
 namespace {
 
-z3::expr_vector boundVariables(z3::context& ctx, SmtEncoding& enc) {
-  z3::expr_vector all(ctx);
-  for (std::size_t k = 0; k < 2; ++k) {
-    for (const z3::expr& v : enc.state(k)) all.push_back(v);
-  }
-  all.push_back(enc.action(0));
-  return all;
-}
-
-z3::expr reachAt(const z3::func_decl& reach, SmtEncoding& enc, std::size_t k) {
-  z3::expr_vector args(reach.ctx());
-  for (const z3::expr& v : enc.state(k)) args.push_back(v);
-  return reach(args);
-}
+z3::expr applied(const z3::func_decl& relation, const z3::expr_vector& args) { return relation(args); }
 
 void addRule(z3::fixedpoint& fp, z3::context& ctx, const z3::expr_vector& bound, const z3::expr& body, const z3::expr& head,
              const char* name) {
@@ -35,12 +22,10 @@ std::uint32_t stepsAlongTrace(z3::context& ctx, z3::fixedpoint& fp) {
   return steps;
 }
 
-// The invariant Spacer found for Reach, as a formula over step k of the encoding.
-z3::expr invariantAt(z3::fixedpoint& fp, z3::func_decl& reach, SmtEncoding& enc, std::size_t k) {
+// The invariant Spacer found for Reach, as a formula over `vars`.
+z3::expr invariantOver(z3::fixedpoint& fp, z3::func_decl& reach, const z3::expr_vector& vars) {
   z3::expr cover = fp.get_cover_delta(-1, reach);
-  z3::expr_vector to(reach.ctx());
-  for (const z3::expr& v : enc.state(k)) to.push_back(v);
-  return cover.substitute(to);  // de Bruijn variable i is the i-th argument
+  return cover.substitute(vars);  // de Bruijn variable i is the i-th argument
 }
 
 bool unsatisfiable(z3::context& ctx, const z3::expr& formula, unsigned timeoutMs) {
@@ -56,7 +41,7 @@ bool unsatisfiable(z3::context& ctx, const z3::expr& formula, unsigned timeoutMs
 
 }  // namespace
 
-Ic3Outcome proveWithIc3(z3::context& ctx, SmtEncoding& enc, const z3::expr& error, unsigned timeoutMs) {
+Ic3Outcome proveWithIc3(z3::context& ctx, const TransitionSystem& sys, unsigned timeoutMs) {
   Ic3Outcome out;
   z3::fixedpoint fp(ctx);
   z3::params params(ctx);
@@ -64,16 +49,18 @@ Ic3Outcome proveWithIc3(z3::context& ctx, SmtEncoding& enc, const z3::expr& erro
   if (timeoutMs != 0) params.set("timeout", timeoutMs);
   fp.set(params);
   z3::sort_vector sorts(ctx);
-  for (std::size_t v = 0; v < enc.state(0).size(); ++v) sorts.push_back(ctx.int_sort());
+  for (const z3::expr& v : sys.current) sorts.push_back(v.get_sort());
   z3::func_decl reach = ctx.function("Reach", sorts, ctx.bool_sort());
   z3::func_decl errorHead = ctx.function("Error", 0, nullptr, ctx.bool_sort());
   fp.register_relation(reach);
   fp.register_relation(errorHead);
-  const z3::expr_vector bound = boundVariables(ctx, enc);
-  const z3::expr step = enc.transitionByCases(0) && enc.inRange(1);
-  addRule(fp, ctx, bound, enc.initial(0), reachAt(reach, enc, 0), "init");
-  addRule(fp, ctx, bound, reachAt(reach, enc, 0) && step, reachAt(reach, enc, 1), "step");
-  addRule(fp, ctx, bound, reachAt(reach, enc, 0) && error, errorHead(), "error");
+  z3::expr_vector bound(ctx);
+  for (const z3::expr& v : sys.current) bound.push_back(v);
+  for (const z3::expr& v : sys.next) bound.push_back(v);
+  for (const z3::expr& v : sys.inputs) bound.push_back(v);
+  addRule(fp, ctx, bound, sys.initial, applied(reach, sys.current), "init");
+  addRule(fp, ctx, bound, applied(reach, sys.current) && sys.step, applied(reach, sys.next), "step");
+  addRule(fp, ctx, bound, applied(reach, sys.current) && sys.error, errorHead(), "error");
   z3::expr query = errorHead();
   z3::check_result r = z3::unknown;
   try {
@@ -91,13 +78,12 @@ Ic3Outcome proveWithIc3(z3::context& ctx, SmtEncoding& enc, const z3::expr& erro
     out.note = "IC3 gave up: " + fp.reason_unknown();
     return out;
   }
-  // Spacer's answer is not taken on trust: the invariant must hold initially, be kept by every step
-  // within the ranges, and exclude the error.
-  z3::expr inv0 = invariantAt(fp, reach, enc, 0), inv1 = invariantAt(fp, reach, enc, 1);
-  bool initiation = unsatisfiable(ctx, enc.initial(0) && !inv0, timeoutMs);
-  // The compact form of the same step relation: the solver decides it many times faster.
-  bool consecution = initiation && unsatisfiable(ctx, inv0 && enc.transition(0) && enc.inRange(1) && !inv1, timeoutMs);
-  bool safe = consecution && unsatisfiable(ctx, inv0 && error, timeoutMs);
+  // Spacer's answer is not taken on trust: the invariant must hold initially, be kept by every
+  // step, and exclude the error.
+  z3::expr inv0 = invariantOver(fp, reach, sys.current), inv1 = invariantOver(fp, reach, sys.next);
+  bool initiation = unsatisfiable(ctx, sys.initial && !inv0, timeoutMs);
+  bool consecution = initiation && unsatisfiable(ctx, inv0 && sys.checkStep && !inv1, timeoutMs);
+  bool safe = consecution && unsatisfiable(ctx, inv0 && sys.error, timeoutMs);
   if (!safe) {
     out.note = std::string("IC3's invariant did not pass the independent check (") +
                (!initiation ? "initiation" : !consecution ? "consecution" : "it does not exclude the error") + ")";
@@ -106,6 +92,16 @@ Ic3Outcome proveWithIc3(z3::context& ctx, SmtEncoding& enc, const z3::expr& erro
   out.kind = Ic3Outcome::Kind::Proven;
   out.conjuncts = inv0.is_and() ? inv0.num_args() : 1;
   return out;
+}
+
+Ic3Outcome proveWithIc3(z3::context& ctx, SmtEncoding& enc, const z3::expr& error, unsigned timeoutMs) {
+  z3::expr_vector inputs(ctx);
+  inputs.push_back(enc.action(0));
+  // The compact form of the same step relation for the check: the solver decides it many times
+  // faster; the form by cases is the one Spacer projects best.
+  TransitionSystem sys{enc.state(0), enc.state(1), inputs, enc.initial(0), enc.transitionByCases(0) && enc.inRange(1),
+                       enc.transition(0) && enc.inRange(1), error};
+  return proveWithIc3(ctx, sys, timeoutMs);
 }
 
 }  // namespace semo::checker::detail

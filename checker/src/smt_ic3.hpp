@@ -1,11 +1,11 @@
 #pragma once
 // Unbounded proofs of one safety property with IC3/PDR (Z3's Spacer engine on constrained Horn
-// clauses): Reach(s) for the initial state; Reach(s) and a step s -> s' that stays within the
-// declared ranges give Reach(s'); Reach(s) and the error condition give Error. Spacer either finds an
-// inductive invariant that excludes the error, which semo then checks on its own with a plain
-// solver (it holds initially, every step keeps it, and it rules the error out) before calling the
-// property proven, or derives the error, and returns that derivation's number of steps so that
-// bounded model checking can rebuild the counterexample at exactly that depth.
+// clauses): Reach(s) for the initial state; Reach(s) and a step s -> s' give Reach(s'); Reach(s)
+// and the error condition give Error. Spacer either finds an inductive invariant that excludes the
+// error, which semo then checks on its own with a plain solver (it holds initially, every step
+// keeps it, and it rules the error out) before calling the property proven, or derives the error,
+// and returns that derivation's number of steps so that bounded model checking can rebuild the
+// counterexample at exactly that depth.
 #include <cstdint>
 #include <string>
 
@@ -23,8 +23,21 @@ struct Ic3Outcome {
   std::string note;             // Unknown: why
 };
 
-// `error` may mention step 0, action 0 and step 1 of `enc` (a range error is a step that leaves a
-// range). timeoutMs = 0: no limit.
+// A transition system over Boolean and integer constants: `current` and `next` are the state's
+// copies (same sorts, same order), `inputs` the other constants a step reads (a rule's choice).
+struct TransitionSystem {
+  z3::expr_vector current, next, inputs;
+  z3::expr initial;   // over current
+  z3::expr step;      // over current, inputs and next: the form Spacer is given
+  z3::expr checkStep; // the same relation, in the form the independent consecution check is given
+  z3::expr error;     // over current, inputs and next (an error may be a step)
+};
+
+// timeoutMs = 0: no limit.
+Ic3Outcome proveWithIc3(z3::context& ctx, const TransitionSystem& system, unsigned timeoutMs);
+
+// The model of `enc` with `error`, which may mention step 0, action 0 and step 1 of `enc` (a range
+// error is a step that leaves a range).
 Ic3Outcome proveWithIc3(z3::context& ctx, SmtEncoding& enc, const z3::expr& error, unsigned timeoutMs);
 
 }  // namespace semo::checker::detail

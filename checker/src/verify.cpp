@@ -89,6 +89,10 @@ void livenessVerdicts(Report& out, const ir::Model& model) {
                    (t.loopStart >= t.steps.size() ? std::string("then it stays for ever") : "loop from step " + std::to_string(t.loopStart + 1)) +
                    (settled ? ", in which what the robots sense settles" : "");
       if (searched && live.methods[k].roundRobin) v.coverage += "; found with the robots taking turns, after no slice decided";
+      if (searched && live.methods[k].walked) {
+        v.coverage += "; found by random walks on the whole model (walk " + std::to_string(live.methods[k].walks) +
+                      "), checked on it, after no slice decided";
+      }
       if (searched && live.methods[k].hunted) {
         v.coverage += "; found symbolically on the property's cone (" + std::to_string(live.methods[k].keptVariables) + " of " +
                       std::to_string(model.variables.size()) + " variables) without crashes, after no slice decided";

@@ -161,7 +161,8 @@ TEST(Liveness, ARoundRobinHuntFindsAViolationNoSliceAndNoPartialSearchReaches) {
   small.maxStates = 1000;
   LivenessOptions options;
   options.sliceStates = 1000;
-  options.symbolic = false;  // the hunt's own test: the symbolic search would decide it first
+  options.symbolic = false;  // the hunt's own test: the symbolic search would decide it first,
+  options.walks = false;     // and so would the random walks
   LivenessResult r = checkLiveness(parse(m + "property p : always eventually {m == 0 || " + sum + " == 99};\n"), small, options);
   ASSERT_EQ(r.properties.size(), 1u);
   EXPECT_EQ(r.properties[0].verdict, Verdict::Violated);
@@ -205,7 +206,8 @@ TEST(Liveness, TheRoundRobinHuntAllowsLossesWhenNoLosslessRunViolates) {
   small.maxStates = 1000;
   LivenessOptions options;
   options.sliceStates = 1000;
-  options.symbolic = false;  // the hunt's own test: the symbolic search would decide it first
+  options.symbolic = false;  // the hunt's own test: the symbolic search would decide it first,
+  options.walks = false;     // and so would the random walks
   LivenessResult r = checkLiveness(parse(m + "property p : eventually {got || " + sum + " == 99};\n"), small, options);
   ASSERT_EQ(r.properties.size(), 1u);
   EXPECT_EQ(r.properties[0].verdict, Verdict::Violated);
@@ -234,7 +236,8 @@ TEST(Liveness, TheRoundRobinHuntTriesCrashesLast) {
   small.maxStates = 1000;
   LivenessOptions options;
   options.sliceStates = 1000;
-  options.symbolic = false;  // the hunt's own test: the symbolic search would decide it first
+  options.symbolic = false;  // the hunt's own test: the symbolic search would decide it first,
+  options.walks = false;     // and so would the random walks
   LivenessResult r = checkLiveness(parse(m + "property p : eventually {done || " + sum + " == 99};\n"), small, options);
   ASSERT_EQ(r.properties.size(), 1u);
   EXPECT_EQ(r.properties[0].verdict, Verdict::Violated);

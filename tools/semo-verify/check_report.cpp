@@ -175,6 +175,10 @@ nlohmann::json reportJson(const checker::Report& r, const ir::Model& model, cons
           search["on"] = "slice, symbolically";
           search["symbolicProductStates"] = m.symbolicStates;
         }
+        if (m.walked) {
+          search["on"] = "random walks";
+          search["walks"] = m.walks;
+        }
         if (m.hunted) {
           search["on"] = "cone without crashes, symbolically";
           search["symbolicProductStates"] = m.symbolicStates;

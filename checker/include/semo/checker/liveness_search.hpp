@@ -36,6 +36,10 @@ struct LivenessMethod {
   // Violated: the lasso was found by the hunt on the property's cone, without crashes, for a loop
   // that senses nothing (symbolically), after no slice decided; keptVariables is the cone's.
   bool hunted = false;
+  // Violated: the lasso was found by random walks on the whole model (the walks-th), after no
+  // slice decided.
+  bool walked = false;
+  std::uint32_t walks = 0;
   double seconds = 0;             // spent on this property
 };
 
@@ -65,6 +69,9 @@ struct LivenessOptions {
   std::uint64_t sliceStates = 500'000;
   // A slice too large to enumerate is searched as decision diagrams (symbolic_liveness.hpp).
   bool symbolic = true;
+  // When no slice decides, random walks on the whole model hunt a fair violation first
+  // (lasso_walks.hpp; at most 10 s), before the symbolic hunt and the round-robin one.
+  bool walks = true;
 };
 
 // Each property has its own product; up to limits.threads of them are searched at once, each
