@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Benchmark (not a test): the LTL properties of scouting and patrol, property by property, with
-# each reduction on and off: slicing (cone of influence refined by counterexamples) and symmetry.
+# each reduction on and off: slicing (cone of influence refined by counterexamples) and symmetry,
+# and the random walks that hunt violations when no slice decides.
 # Prints, per configuration, the wall time and peak memory of the whole check, and per property
 # its verdict, where it was searched (slice of k variables, enumerated or symbolic, or whole model),
 # its product states (counted, for a symbolic slice) and seconds; swarm10's liveness with the
@@ -40,6 +41,8 @@ for p in d["properties"]:
         states = "%.3g" % s["symbolicProductStates"]
     elif s.get("on") == "round-robin":
         where = "robots taking turns"
+    elif s.get("on") == "random walks":
+        where = "random walks, walk %d" % s["walks"]
     elif s:
         where = "whole model"
     print("    %-44s %-8s %-36s %12s %9.2f" % (p["name"], p["verdict"], where, states, s.get("seconds", 0.0)))
@@ -91,6 +94,7 @@ for example in scouting patrol; do
   model=("$here/specs/examples/$example/$example.semo" --strategy "$here/specs/examples/$example/strategy.xml")
   echo "== $example (MAX_STATES=$max_states, TIME_LIMIT=$limit s)"
   bench_check "auto (slicing + symmetry)" "${model[@]}" --engine auto
+  bench_check "auto, no random walks" "${model[@]}" --engine auto --no-walks
   if [ "$example" = scouting ]; then
     # The explicit safety search does not finish on scouting; smt decides safety, which leaves
     # the LTL properties to the configurations measured.

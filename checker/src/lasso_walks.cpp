@@ -139,9 +139,11 @@ class Walker {
     auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - started).count(); };
     double reported = 0;
     std::uint32_t stale = 0;
-    for (std::uint32_t w = 0; w < limits_.walks; ++w) {
+    // Once a lasso is found, as many walks again look for a shorter one (the shortest is kept).
+    std::uint32_t lastWalk = limits_.walks;
+    for (std::uint32_t w = 0; w < lastWalk; ++w) {
       if (elapsed() > limits_.seconds) {
-        out.why = "no fair violation in " + std::to_string(w) + " random walks (out of time)";
+        if (!out.lasso) out.why = "no fair violation in " + std::to_string(w) + " random walks (out of time)";
         break;
       }
       if (limits_.onProgress && elapsed() - reported >= 1) {
@@ -150,13 +152,16 @@ class Walker {
       }
       std::mt19937_64 rng(limits_.seed * 0x9e3779b97f4a7c15ull + w);
       const std::size_t known = seenAll_.size();
-      if (std::optional<Trace> t = walk(rng, out)) {
-        out.lasso = shortenLasso(model_, *t, property_);
-        out.walks = w + 1;
-        out.why.clear();
-        break;
-      }
+      std::optional<Trace> t = walk(rng, out);
       out.walks = w + 1;
+      if (t) {
+        Trace shorter = shortenLasso(model_, *t, property_);
+        if (!out.lasso || shorter.steps.size() < out.lasso->steps.size()) out.lasso = std::move(shorter), out.lassoWalk = w + 1;
+        out.why.clear();
+        lastWalk = std::min(lastWalk, 2 * out.lassoWalk);
+        continue;
+      }
+      if (out.lasso) continue;
       // Walks that meet no state unseen by earlier walks have covered what walks reach: a small
       // model is done with in a few walks, not in the whole budget.
       stale = seenAll_.size() == known ? stale + 1 : 0;

@@ -7,7 +7,8 @@
 // of its current state) is the one most likely to treat every fairness group fairly. Such a lasso
 // is judged by checkLasso (lasso_check.hpp) on the model itself, then shortened: loops of the stem
 // cut out, and loops inside the loop cut out where what is left is still a fair violation. Only
-// ever finds violations; the same seed gives the same walks.
+// ever finds violations; the same seed gives the same walks. Once a walk has found a lasso, as many
+// walks again look for a shorter one.
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -32,6 +33,8 @@ struct LassoWalkLimits {
 struct LassoWalkOutcome {
   std::optional<Trace> lasso;  // a fair violation of `model`, checked and shortened
   std::uint32_t walks = 0;     // walks taken
+  std::uint32_t lassoWalk = 0; // the walk whose lasso is reported (the first to find one, or a
+                               // shorter one among as many walks again)
   std::uint64_t steps = 0;     // steps taken by all of them
   std::uint32_t loopsJudged = 0;  // loops handed to checkLasso
   std::string why;             // no lasso: how the hunt ended

@@ -174,18 +174,19 @@ SlicedOutcome refineSlices(const CompiledModel& full, const ControlFacts& facts,
 // mode_agreement in under one), and a model without one costs no more than this.
 constexpr double kWalkSeconds = 10;
 
-void walkForLasso(const CompiledModel& full, std::size_t property, const SearchLimits& limits, SlicedOutcome& out) {
+void walkForLasso(const CompiledModel& full, std::size_t property, const SearchLimits& limits, std::uint64_t seed, SlicedOutcome& out) {
   const ir::Property& prop = full.model().properties.at(property);
   if (limits.onPhase) limits.onPhase("liveness: " + prop.name + ": no slice decided; random walks hunting a fair loop");
   LassoWalkLimits walks;
   walks.seconds = kWalkSeconds;
+  walks.seed = seed;
   const LassoWalkOutcome r = findLassoByWalks(full.model(), property, walks);
   out.walkSeconds = r.seconds;
   if (r.lasso) {
     out.property.verdict = Verdict::Violated;
     out.property.counterexample = *r.lasso;
     out.walked = true;
-    out.walks = r.walks;
+    out.walks = r.lassoWalk;
     return;
   }
   out.why += "; " + r.why;
@@ -234,9 +235,9 @@ void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLim
 }
 
 SlicedOutcome checkSliced(const CompiledModel& full, const ControlFacts& facts, std::size_t property, const SearchLimits& limits,
-                          std::uint64_t sliceStates, bool symbolic, bool walks) {
+                          std::uint64_t sliceStates, bool symbolic, std::optional<std::uint64_t> walkSeed) {
   SlicedOutcome out = refineSlices(full, facts, property, limits, sliceStates, symbolic);
-  if (walks && out.property.verdict == Verdict::Unknown) walkForLasso(full, property, limits, out);
+  if (walkSeed && out.property.verdict == Verdict::Unknown) walkForLasso(full, property, limits, *walkSeed, out);
   if (symbolic && out.property.verdict == Verdict::Unknown) {
     if (limits.onPhase) limits.onPhase("liveness: " + full.model().properties[property].name + ": no slice decided; hunting the property's cone for a fair loop (symbolically)");
     huntOnCone(full, property, limits, out, &facts);

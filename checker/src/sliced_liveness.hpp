@@ -3,6 +3,7 @@
 // it, or a lasso found on a slice is rebuilt on the whole model (counterexample-guided abstraction
 // refinement): see sliced_liveness.cpp.
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "semo/checker/compiled_model.hpp"
@@ -44,10 +45,12 @@ void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLim
 
 // Random walks on the whole model for a fair violation (lasso_walks.hpp): a lasso found becomes
 // `out`'s verdict (walked); otherwise out.why says how many walks found none. Never a proof.
-void walkForLasso(const CompiledModel& full, std::size_t property, const SearchLimits& limits, SlicedOutcome& out);
+void walkForLasso(const CompiledModel& full, std::size_t property, const SearchLimits& limits, std::uint64_t seed, SlicedOutcome& out);
 
-// `facts` are the model's control facts (slicing.hpp), computed once for all its properties.
+// `facts` are the model's control facts (slicing.hpp), computed once for all its properties. When
+// no slice decides, random walks with `walkSeed` hunt a violation (none: no walks); then, with
+// `symbolic`, the hunt on the cone.
 SlicedOutcome checkSliced(const CompiledModel& full, const ControlFacts& facts, std::size_t property, const SearchLimits& limits,
-                          std::uint64_t sliceStates, bool symbolic, bool walks = true);
+                          std::uint64_t sliceStates, bool symbolic, std::optional<std::uint64_t> walkSeed = 1);
 
 }  // namespace semo::checker::detail

@@ -129,6 +129,8 @@ checker::VerifyOptions verifyOptions(const CheckOptions& options) {
   v.limits.symmetry = options.symmetry;
   v.liveness.slicing = options.slicing;
   v.liveness.symbolic = options.symbolic;
+  v.liveness.walks = options.walks;
+  v.liveness.walkSeed = options.walkSeed;
   v.liveness.sliceStates = options.sliceStates;
   v.limits.threads = options.threads != 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
   v.safetyOnly = options.safetyOnly;

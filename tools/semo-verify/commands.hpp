@@ -61,6 +61,8 @@ struct CheckOptions {
   bool symmetry = true;
   bool slicing = true;
   bool symbolic = true;
+  bool walks = true;            // LivenessOptions::walks
+  std::uint64_t walkSeed = 1;   // LivenessOptions::walkSeed
   std::uint64_t sliceStates = 500'000;  // LivenessOptions::sliceStates
   bool safetyOnly = false;
   unsigned threads = 0;  // 0: one per core

@@ -91,6 +91,9 @@ int main(int argc, char** argv) {
                            "Decide each LTL property on the product of the whole model, not on slices of it refined by counterexamples");
     cmd->add_flag_callback("--no-symbolic", [&check] { check.symbolic = false; },
                            "Give up on a slice too large to enumerate instead of searching it as decision diagrams");
+    cmd->add_flag_callback("--no-walks", [&check] { check.walks = false; },
+                           "When no slice decides an LTL property, skip the random walks that hunt a fair violation on the whole model");
+    cmd->add_option("--seed", check.walkSeed, "Seed of those random walks (default 1): the same seed gives the same walks and verdicts");
     cmd->add_option("--slice-states", check.sliceStates,
                     "Product states one slice of the model may take (default 500000; --max-states, if lower, bounds it too)")
         ->check(CLI::Range(std::uint64_t{1}, UINT64_MAX));

@@ -72,6 +72,7 @@ struct LivenessOptions {
   // When no slice decides, random walks on the whole model hunt a fair violation first
   // (lasso_walks.hpp; at most 10 s), before the symbolic hunt and the round-robin one.
   bool walks = true;
+  std::uint64_t walkSeed = 1;  // the same seed gives the same walks
 };
 
 // Each property has its own product; up to limits.threads of them are searched at once, each
