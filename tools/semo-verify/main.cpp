@@ -5,6 +5,13 @@
 
 #include "commands.hpp"
 
+// A seed is a whole number from 0 up: CLI11 would read "-1" into an unsigned seed as 2^64 - 1.
+const CLI::Validator kSeed(
+    [](std::string& text) {
+      return !text.empty() && text[0] != '-' ? std::string() : "a seed is a whole number from 0 up, not " + text;
+    },
+    "SEED");
+
 int main(int argc, char** argv) {
   CLI::App app{"semo-verify: check a multi-robot mission (SeMo language) before it is deployed"};
   app.set_version_flag("--version", std::string("semo-verify ") + semo::cli::kToolVersion);
@@ -93,7 +100,8 @@ int main(int argc, char** argv) {
                            "Give up on a slice too large to enumerate instead of searching it as decision diagrams");
     cmd->add_flag_callback("--no-walks", [&check] { check.walks = false; },
                            "When no slice decides an LTL property, skip the random walks that hunt a fair violation on the whole model");
-    cmd->add_option("--seed", check.walkSeed, "Seed of those random walks (default 1): the same seed gives the same walks and verdicts");
+    cmd->add_option("--seed", check.walkSeed, "Seed of those random walks (default 1): the same seed gives the same walks and verdicts")
+        ->check(kSeed);
     cmd->add_option("--slice-states", check.sliceStates,
                     "Product states one slice of the model may take (default 500000; --max-states, if lower, bounds it too)")
         ->check(CLI::Range(std::uint64_t{1}, UINT64_MAX));
@@ -227,7 +235,8 @@ int main(int argc, char** argv) {
   simulateCmd->add_option("--robots,-r", simulate.robotsDir, "Folder of URDF files");
   simulateCmd->add_option("--world,-w", simulate.world, "World file (runtime/WORLD.md; default: MISSION.world.json next to the mission)");
   simulateCmd->add_option("--duration", simulate.duration, "Simulated time, e.g. 60s, 500ms, 2min (default 60s)");
-  simulateCmd->add_option("--seed", simulate.seed, "Seed of every random choice (the same seed gives the same trace, byte for byte; default 1)");
+  simulateCmd->add_option("--seed", simulate.seed, "Seed of every random choice (the same seed gives the same trace, byte for byte; default 1)")
+      ->check(kSeed);
   simulateCmd->add_option("--seeds", seeds, "Run seeds A..B (inclusive) and print statistics instead of one run's summary");
   simulateCmd->add_option("--crash", simulate.crashes,
                           "Crash a robot at a time: ROBOT@TIME, leader@TIME (whoever leads then) or leader:BLOCK@TIME; repeatable");
@@ -291,7 +300,8 @@ int main(int argc, char** argv) {
                          "Where the reachable states (of a model, or of a mission's round model) outgrow --max-states, estimate from this many simulated runs "
                          "instead, with confidence bands (default 10000; 0: give up with exit 3)")
       ->check(CLI::Range(0, 100'000'000));
-  analyzeCmd->add_option("--seed", analyze.seed, "Seed of those runs (default 1): the same seed gives the same estimate");
+  analyzeCmd->add_option("--seed", analyze.seed, "Seed of those runs (default 1): the same seed gives the same estimate")
+      ->check(kSeed);
   analyzeCmd->add_flag("--json", analyze.json, "Print the results as JSON");
   analyzeCmd->add_option("--svg", analyze.svg, "Write a chart of P(within t) against t");
 
