@@ -41,4 +41,27 @@ std::size_t forEachShippedModel(F f) {
   return models;
 }
 
+// Eight counters (0..3) that each count up by a fair rule and come back to 0 only all together, by
+// a fair `reset` rule: a property that reads them all keeps every slice as large as the product,
+// and a breadth-first search of 1,000 states holds no loop. The hunts' tests (liveness_test.cpp,
+// lasso_walks_test.cpp) put their violation beside them.
+struct ResettingCounters {
+  std::string declarations;  // the counters and their tick rules (rules 0..7)
+  std::string resetRule;     // the rule that sets them all back to 0 (put it after the others)
+  std::string sum;           // c1 + ... + c8, for a property that reads every counter
+};
+inline ResettingCounters resettingCounters() {
+  ResettingCounters out;
+  std::string full, reset;
+  for (int k = 1; k <= 8; ++k) {
+    const std::string c = "c" + std::to_string(k);
+    out.declarations += "var " + c + " : 0..3 = 0;\nrule tick" + std::to_string(k) + " @fair : " + c + " < 3 -> " + c + "' = " + c + " + 1;\n";
+    out.sum += (out.sum.empty() ? "" : " + ") + c;
+    full += (full.empty() ? "" : " && ") + c + " == 3";
+    reset += (reset.empty() ? "" : ", ") + c + "' = 0";
+  }
+  out.resetRule = "rule reset @fair : " + full + " -> " + reset + ";\n";
+  return out;
+}
+
 }  // namespace semo::test

@@ -104,18 +104,12 @@ TEST(LassoWalks, ShorteningCutsTheStemsLoopsAndKeepsACounterexample) {
 }
 
 // The hunt models of liveness_test.cpp, where no slice is smaller than the product and a partial
-// breadth-first search holds no loop: the walks find each violation (a sensed way out, a lost
-// message, a crash) and the liveness search reports it as theirs.
+// breadth-first search holds no loop: the walks find each violation (a lost message, a
+// crash) and the liveness search reports it as theirs.
 TEST(LassoWalks, FindWhatNoSliceAndNoPartialSearchReaches) {
-  std::string counters, sum, full, reset;
-  for (int k = 1; k <= 8; ++k) {
-    const std::string c = "c" + std::to_string(k);
-    counters += "var " + c + " : 0..3 = 0;\nrule tick" + std::to_string(k) + " @fair : " + c + " < 3 -> " + c + "' = " + c + " + 1;\n";
-    sum += (sum.empty() ? "" : " + ") + c;
-    full += (full.empty() ? "" : " && ") + c + " == 3";
-    reset += (reset.empty() ? "" : ", ") + c + "' = 0";
-  }
-  counters += "rule reset @fair : " + full + " -> " + reset + ";\n";
+  const test::ResettingCounters c = test::resettingCounters();
+  const std::string counters = c.declarations + c.resetRule;
+  const std::string& sum = c.sum;
   const std::string lost = "semo-ir 1;\nvar inbox : bool = false;\nvar got : bool = false;\nvar sent : bool = false;\n" + counters +
                            "rule send @fair : !sent -> sent' = true, inbox' = true;\n"
                            "rule lose @kind(loss) : inbox -> inbox' = false;\n"

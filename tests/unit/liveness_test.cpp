@@ -190,18 +190,13 @@ TEST(Liveness, TheRoundRobinHuntAllowsLossesWhenNoLosslessRunViolates) {
   // the product, and come back only all together (reset), too deep for 1000 states breadth-first.
   // Without losses every run delivers the message; the violation needs the loss.
   std::string m = "semo-ir 1;\nvar sent : bool = false;\nvar inbox : bool = false;\nvar got : bool = false;\n";
-  std::string sum, full, reset;
-  for (int k = 1; k <= 8; ++k) {
-    const std::string c = "c" + std::to_string(k);
-    m += "var " + c + " : 0..3 = 0;\nrule tick" + std::to_string(k) + " @fair : " + c + " < 3 -> " + c + "' = " + c + " + 1;\n";
-    sum += (sum.empty() ? "" : " + ") + c;
-    full += (full.empty() ? "" : " && ") + c + " == 3";
-    reset += (reset.empty() ? "" : ", ") + c + "' = 0";
-  }
+  const test::ResettingCounters counters = test::resettingCounters();
+  const std::string& sum = counters.sum;
+  m += counters.declarations;
   m += "rule send @fair : !sent -> sent' = true, inbox' = true;\n"
        "rule lose @kind(loss) : inbox -> inbox' = false;\n"
        "rule deliver @fair : inbox -> inbox' = false, got' = true;\n"
-       "rule reset @fair : " + full + " -> " + reset + ";\n";
+       + counters.resetRule;
   SearchLimits small;
   small.maxStates = 1000;
   LivenessOptions options;
@@ -221,17 +216,12 @@ TEST(Liveness, TheRoundRobinHuntTriesCrashesLast) {
   // The worker finishes unless it crashes first; the counters, as above, keep the slices and a
   // breadth-first search from any loop. Only the stage that allows crashes finds the violation.
   std::string m = "semo-ir 1;\nvar alive : bool = true;\nvar done : bool = false;\n";
-  std::string sum, full, reset;
-  for (int k = 1; k <= 8; ++k) {
-    const std::string c = "c" + std::to_string(k);
-    m += "var " + c + " : 0..3 = 0;\nrule tick" + std::to_string(k) + " @fair : " + c + " < 3 -> " + c + "' = " + c + " + 1;\n";
-    sum += (sum.empty() ? "" : " + ") + c;
-    full += (full.empty() ? "" : " && ") + c + " == 3";
-    reset += (reset.empty() ? "" : ", ") + c + "' = 0";
-  }
+  const test::ResettingCounters counters = test::resettingCounters();
+  const std::string& sum = counters.sum;
+  m += counters.declarations;
   m += "rule crash @kind(crash) : alive -> alive' = false;\n"
        "rule work @fair : alive && !done -> done' = true;\n"
-       "rule reset @fair : " + full + " -> " + reset + ";\n";
+       + counters.resetRule;
   SearchLimits small;
   small.maxStates = 1000;
   LivenessOptions options;
