@@ -169,10 +169,6 @@ SlicedOutcome refineSlices(const CompiledModel& full, const ControlFacts& facts,
 
 }  // namespace
 
-// Slices over-approximate, so their lassos may keep failing on the model while a real violation
-// hides among them. The hunt looks at the property's whole cone instead (exact), without the
-// crashes and environment steps no fairness asks for, and for a loop that senses nothing (settled
-// on any world): every fair lasso found there is one of the model's, rebuilt on it as a slice's.
 // The walks' time per property: a lasso the walks can find turns up within seconds (scouting's
 // mode_agreement in under one), and a model without one costs no more than this.
 constexpr double kWalkSeconds = 10;
@@ -195,6 +191,10 @@ void walkForLasso(const CompiledModel& full, std::size_t property, const SearchL
   out.why += "; " + r.why;
 }
 
+// Slices over-approximate, so their lassos may keep failing on the model while a real violation
+// hides among them. The hunt looks at the property's whole cone instead (exact), without the
+// crashes and environment steps no fairness asks for, and for a loop that senses nothing (settled
+// on any world): every fair lasso found there is one of the model's, rebuilt on it as a slice's.
 void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLimits& limits, SlicedOutcome& out,
                 const ControlFacts* facts) {
   const ControlFacts none{{}, {}, 0, 0};
