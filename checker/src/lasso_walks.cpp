@@ -137,7 +137,6 @@ class Walker {
     LassoWalkOutcome out;
     const auto started = Clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - started).count(); };
-    double reported = 0;
     std::uint32_t stale = 0;
     // Once a lasso is found, as many walks again look for a shorter one (the shortest is kept).
     std::uint32_t lastWalk = limits_.walks;
@@ -145,10 +144,6 @@ class Walker {
       if (elapsed() > limits_.seconds) {
         if (!out.lasso) out.why = "no fair violation in " + std::to_string(w) + " random walks (out of time)";
         break;
-      }
-      if (limits_.onProgress && elapsed() - reported >= 1) {
-        reported = elapsed();
-        limits_.onProgress(w, out.steps, reported);
       }
       std::mt19937_64 rng(limits_.seed * 0x9e3779b97f4a7c15ull + w);
       const std::size_t known = seenAll_.size();
@@ -217,7 +212,6 @@ class Walker {
         for (std::size_t b = 0; b < stepper_.branches(r); ++b) options.push_back({{r, b}, weight}), total += weight;
       }
       if (!fairEnabled) {  // the run may stay here for ever
-        ++out.loopsJudged;
         Trace t = traceOf(path, path.choices.size(), property_);
         if (checkLasso(model_, t, property_).counterexample()) return t;
         if (options.empty()) return std::nullopt;
@@ -241,7 +235,6 @@ class Walker {
       ++returns;
       const bool judge = (returns & (returns - 1)) == 0 || step % 512 == 0 || step == limits_.stepsPerWalk;
       if (judge && path.states[it->second] == path.states.back() && fairOnLoop(path, it->second)) {
-        ++out.loopsJudged;
         Trace t = traceOf(path, it->second, property_);
         if (checkLasso(model_, t, property_).counterexample()) return t;
       }

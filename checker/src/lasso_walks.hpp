@@ -10,7 +10,6 @@
 // ever finds violations; the same seed gives the same walks. Once a walk has found a lasso, as many
 // walks again look for a shorter one.
 #include <cstdint>
-#include <functional>
 #include <optional>
 #include <string>
 
@@ -27,7 +26,6 @@ struct LassoWalkLimits {
   // in 355 (31 s).
   std::uint32_t stepsPerWalk = 1024;
   double seconds = 30;
-  std::function<void(std::uint32_t walks, std::uint64_t steps, double seconds)> onProgress;  // about once a second
 };
 
 struct LassoWalkOutcome {
@@ -36,7 +34,6 @@ struct LassoWalkOutcome {
   std::uint32_t lassoWalk = 0; // the walk whose lasso is reported (the first to find one, or a
                                // shorter one among as many walks again)
   std::uint64_t steps = 0;     // steps taken by all of them
-  std::uint32_t loopsJudged = 0;  // loops handed to checkLasso
   std::string why;             // no lasso: how the hunt ended
   double seconds = 0;
 };

@@ -47,11 +47,7 @@ z3::expr SmtEncoding::sameState(std::size_t a, std::size_t b) {
   return z3::mk_and(parts);
 }
 
-z3::expr SmtEncoding::transition(std::size_t k) { return transition(k, false); }
-
-z3::expr SmtEncoding::transitionOrStay(std::size_t k) { return transition(k, true); }
-
-z3::expr SmtEncoding::transition(std::size_t k, bool orStay) {
+z3::expr SmtEncoding::transition(std::size_t k) {
   state(k + 1);
   const z3::expr_vector& now = states_[k];
   const z3::expr_vector& next = states_[k + 1];
@@ -60,15 +56,7 @@ z3::expr SmtEncoding::transition(std::size_t k, bool orStay) {
   // Each variable's next value is one choice over the outcomes that assign it (the others keep it):
   // far smaller than an equation per variable per outcome, which made BMC several times slower.
   z3::expr_vector parts(ctx_);
-  parts.push_back(act >= (orStay ? -1 : 0) && act < static_cast<int>(actions_.size()));
-  if (orStay) {
-    // Staying (no outcome chosen: every variable keeps its value) only where no fair rule is enabled.
-    z3::expr_vector fairGuards(ctx_);
-    for (const ir::Rule& r : m_.rules) {
-      if (r.weaklyFair || r.stronglyFair) fairGuards.push_back(truth(r.guard, k));
-    }
-    parts.push_back(z3::implies(act == -1, !z3::mk_or(fairGuards)));
-  }
+  parts.push_back(act >= 0 && act < static_cast<int>(actions_.size()));
   std::vector<z3::expr> nextValue;
   nextValue.reserve(m_.variables.size());
   for (ir::VarId v = 0; v < m_.variables.size(); ++v) nextValue.push_back(now[static_cast<int>(v)]);

@@ -25,9 +25,6 @@ class SmtEncoding {
   [[nodiscard]] z3::expr initial(std::size_t k);          // step k is the initial state
   [[nodiscard]] z3::expr inRange(std::size_t k);          // every variable within its declared range
   [[nodiscard]] z3::expr transition(std::size_t k);       // step k -> k+1 by one rule outcome
-  // The same, or (action(k) = -1) the state stays where no fair rule is enabled: time passes, as
-  // liveness reads a run (specs/ir.md, "Properties").
-  [[nodiscard]] z3::expr transitionOrStay(std::size_t k);
   // The same relation as one case per rule outcome, without action(k): larger, but the form IC3
   // (Spacer) projects best (several times faster on the examples than transition()).
   [[nodiscard]] z3::expr transitionByCases(std::size_t k);
@@ -43,7 +40,6 @@ class SmtEncoding {
   [[nodiscard]] const std::vector<Action>& actions() const { return actions_; }
 
  private:
-  z3::expr transition(std::size_t k, bool orStay);
   z3::expr value(const ir::Expr& e, std::size_t k);   // as an integer
   z3::expr truth(const ir::Expr& e, std::size_t k);   // as a Boolean
 
