@@ -10,12 +10,13 @@
 #include "semo/checker/fairness.hpp"
 #include "semo/checker/lasso_check.hpp"
 #include "semo/checker/stepper.hpp"
+#include "thread_cpu_clock.hpp"
 
 namespace semo::checker::detail {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using Clock = ThreadCpuClock;  // the budget is processor time (thread_cpu_clock.hpp)
 using State = Stepper::State;
 
 std::uint64_t hashOf(const State& s) {

@@ -19,10 +19,12 @@
 #include "semo/checker/explicit_search.hpp"
 #include "semo/checker/fairness.hpp"
 #include "semo/semantics/ir.hpp"
+#include "thread_cpu_clock.hpp"
 
 namespace semo::checker::detail {
 
-using Clock = std::chrono::steady_clock;
+// Budgets count the thread's processor time (thread_cpu_clock.hpp).
+using Clock = ThreadCpuClock;
 
 // BuDDy keeps one package per process (symbolic_liveness.cpp holds a lock for a whole search), and
 // its error hook records what went wrong (a full node table) instead of ending the process, as
