@@ -25,9 +25,9 @@ ir::Model knowledgeSpreadModel(const SpreadParameters& p) {
   ir::Model m;
   const std::size_t n = p.robots;
   const auto messages = static_cast<std::int32_t>(n * (n - 1));
-  for (std::size_t i = 0; i < n; ++i) m.variables.push_back({"knows[" + std::to_string(i) + "]", 0, 1, i == p.firstKnower ? 1 : 0, true, ir::kNoRobot, {}});
+  for (std::size_t i = 0; i < n; ++i) m.variables.push_back({"knows[" + std::to_string(i) + "]", 0, 1, i == p.firstKnower ? 1 : 0, true, ir::kNoRobot, {}, {}});
   const auto phase = static_cast<ir::VarId>(n);
-  m.variables.push_back({"phase", 0, messages, 0, false, ir::kNoRobot, {}});
+  m.variables.push_back({"phase", 0, messages, 0, false, ir::kNoRobot, {}, {}});
   m.rules.push_back(rule("round", is(phase, 0), {{1.0, {{phase, Expr::constant(messages > 0 ? 1 : 0)}}}}));
   const double lost = std::pow(p.lossPerCopy, static_cast<double>(p.retransmissions + 1));
   std::int32_t index = 0;
@@ -81,7 +81,7 @@ SampledAnswer sampleSpread(const SpreadParameters& p, SamplingOptions options) {
 ir::Model lossRunModel(std::size_t length, double loss) {
   ir::Model m;
   const auto top = static_cast<std::int32_t>(length);
-  m.variables.push_back({"run", 0, top, 0, false, ir::kNoRobot, {}});
+  m.variables.push_back({"run", 0, top, 0, false, ir::kNoRobot, {}, {}});
   std::vector<ir::Branch> period;
   if (loss > 0) period.push_back({loss, {{0, Expr::binary(Op::Add, Expr::var(0), Expr::constant(1))}}});
   if (loss < 1) period.push_back({1 - loss, {{0, Expr::constant(0)}}});

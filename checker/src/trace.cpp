@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "knowledge_witness.hpp"
 #include "semo/checker/stepper.hpp"
 
 namespace semo::checker {
@@ -61,10 +62,19 @@ std::string enabledButNotTaken(const ir::Model& m, const Trace& t) {
 
 }  // namespace
 
+// The facts a knowledge count holds after a change, as a trace shows them (knowledge_witness.hpp).
+std::string heldText(const std::vector<std::string>& facts) {
+  std::string out;
+  for (const std::string& f : facts) out += (out.empty() ? "" : ", ") + f;
+  return out.empty() ? "none" : out;
+}
+
 std::string traceToText(const ir::Model& m, const Trace& t) {
   std::ostringstream out;
   out << "counterexample for " << t.property << " (" << t.kind << "): " << t.steps.size() << " step"
       << (t.steps.size() == 1 ? "" : "s") << "\n";
+  const detail::KnowledgeWitness known = detail::knowledgeWitness(m, t);
+  if (known.named) out << "  (facts: the model counts a robot's facts; the names are one assignment that fits the counts)\n";
   for (std::size_t i = 0; i < t.steps.size(); ++i) {
     if (i == t.loopStart) out << "  -- loop starts here (the steps below repeat for ever) --\n";
     const Step& s = t.steps[i];
@@ -74,9 +84,12 @@ std::string traceToText(const ir::Model& m, const Trace& t) {
     if (r.kind != ir::RuleKind::Step) out << "  {" << ir::kindName(r.kind) << "}";
     if (!r.origin.empty()) out << "  at " << r.origin.text();
     out << "\n";
-    for (const Change& c : s.changes) {
+    for (std::size_t j = 0; j < s.changes.size(); ++j) {
+      const Change& c = s.changes[j];
       const ir::Variable& v = m.variables.at(c.var);
-      out << "       " << v.name << ": " << valueText(v, c.before) << " -> " << valueText(v, c.after) << "\n";
+      out << "       " << v.name << ": " << valueText(v, c.before) << " -> " << valueText(v, c.after);
+      if (known.named && !v.facts.empty()) out << "  (holds " << heldText(known.held[i][j]) << ")";
+      out << "\n";
     }
   }
   if (t.kind == "deadlock") {
@@ -118,15 +131,19 @@ std::string traceToJson(const ir::Model& m, const Trace& t) {
     initial[m.variables[v].name] = t.initial[v];
     initialText[m.variables[v].name] = valueText(m.variables[v], t.initial[v]);  // as "fromText"/"toText" show values
   }
+  const detail::KnowledgeWitness known = detail::knowledgeWitness(m, t);
   json steps = json::array();
   for (std::size_t i = 0; i < t.steps.size(); ++i) {
     const Step& s = t.steps[i];
     const ir::Rule& r = m.rules.at(s.rule);
     json changes = json::array();
-    for (const Change& c : s.changes) {
+    for (std::size_t j = 0; j < s.changes.size(); ++j) {
+      const Change& c = s.changes[j];
       const ir::Variable& v = m.variables.at(c.var);
-      changes.push_back({{"var", v.name}, {"from", c.before}, {"to", c.after},
-                         {"fromText", valueText(v, c.before)}, {"toText", valueText(v, c.after)}});
+      json change = {{"var", v.name}, {"from", c.before}, {"to", c.after},
+                     {"fromText", valueText(v, c.before)}, {"toText", valueText(v, c.after)}};
+      if (known.named && !v.facts.empty()) change["facts"] = known.held[i][j];
+      changes.push_back(std::move(change));
     }
     json step = {{"step", i + 1}, {"rule", r.name}, {"kind", ir::kindName(r.kind)}, {"label", r.label},
                  {"origin", r.origin.text()}, {"branch", s.branch}, {"changes", changes}};

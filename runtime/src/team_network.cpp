@@ -266,12 +266,18 @@ bool Team::learnFrom(Id q, Id sender, Id k) {
   const std::vector<Id>& items = t_.robots[q].knowledge;
   const auto slot = std::find(items.begin(), items.end(), k) - items.begin();
   const int before = r.knowledge[slot].count();
+  std::vector<char> had(item.facts.size());
+  for (std::size_t f = 0; f < had.size(); ++f) had[f] = r.knowledge[slot].holds(static_cast<std::uint32_t>(f)) ? 1 : 0;
   beginStep();
   r.knowledge[slot].merge(robots_[sender].knowledge[from], r.lamport);
   const int after = r.knowledge[slot].count();
   if (after == before) return false;  // nothing new: the model sees no change
+  std::string learnt;  // the facts it did not hold before, by name
+  for (std::size_t f = 0; f < had.size(); ++f) {
+    if (had[f] == 0 && r.knowledge[slot].holds(static_cast<std::uint32_t>(f))) learnt += (learnt.empty() ? "" : ", ") + item.facts[f];
+  }
   const Id rule = t_.robots[q].learnRule[slot][t_.robots[sender].indexInTeam * (item.facts.size() + 1) + static_cast<std::size_t>(after)];
-  note(q, TraceEvent::Kind::Fact, "learns " + item.name + " from " + t_.robots[sender].name, item.name, sender);
+  note(q, TraceEvent::Kind::Fact, "learns " + item.name + " from " + t_.robots[sender].name + ": " + learnt, item.name, sender);
   step(q, rule == kNone ? std::vector<Id>{} : std::vector<Id>{rule}, rule == kNone ? "learns " + item.name : t_.rules[rule].label,
        rule == kNone ? std::string() : t_.rules[rule].origin);
   afterStep(q);

@@ -143,7 +143,8 @@ void Team::onPacket(const Packet& p) {
       const std::size_t count = static_cast<std::size_t>(me.knowledge[slot].count());
       const std::size_t teacher = t_.robots[p.sender].indexInTeam * (item.facts.size() + 1) + count;
       const Id rule = teacher < t_.robots[self].learnRule[slot].size() ? t_.robots[self].learnRule[slot][teacher] : kNone;
-      note(self, TraceEvent::Kind::Fact, "learns " + item.name + " from " + t_.robots[p.sender].name, item.name, p.sender);
+      const std::string fact = p.value >= 0 && static_cast<std::size_t>(p.value) < item.facts.size() ? item.facts[static_cast<std::size_t>(p.value)] : std::to_string(p.value);
+      note(self, TraceEvent::Kind::Fact, "learns " + item.name + " from " + t_.robots[p.sender].name + ": " + fact, item.name, p.sender);
       step(self, rule == kNone ? std::vector<Id>{} : std::vector<Id>{rule}, rule == kNone ? "learns " + item.name : t_.rules[rule].label,
            rule == kNone ? std::string() : t_.rules[rule].origin);
       afterStep(self);

@@ -315,13 +315,14 @@ class Reader {
     if (v.init < v.min || v.init > v.max) fail(nameToken, "initial value " + std::to_string(v.init) + " is outside the range");
     attributes([&](const Token& key, const std::string& value) {
       if (key.text == "robot") return v.robot = robot(key, value), true;
-      if (key.text == "values") {
+      if (key.text == "values" || key.text == "facts") {
+        std::vector<std::string>& names = key.text == "values" ? v.valueNames : v.facts;
         std::string word;
         for (char c : value + " ") {
           if (c != ' ') {
             word += c;
           } else if (!word.empty()) {
-            v.valueNames.push_back(std::move(word));
+            names.push_back(std::move(word));
             word.clear();
           }
         }

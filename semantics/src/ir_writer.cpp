@@ -69,7 +69,7 @@ std::size_t arrayRun(const std::vector<Variable>& vars, std::size_t first) {
   while (first + n < vars.size()) {
     const Variable& e = vars[first + n];
     if (e.name != base + "[" + std::to_string(n) + "]" || e.min != v.min || e.max != v.max || e.init != v.init ||
-        e.isBool != v.isBool || e.robot != v.robot || e.valueNames != v.valueNames) {
+        e.isBool != v.isBool || e.robot != v.robot || e.valueNames != v.valueNames || e.facts != v.facts) {
       break;
     }
     ++n;
@@ -197,6 +197,11 @@ std::string toText(const Model& m) {
       std::string names;
       for (const std::string& n : v.valueNames) names += (names.empty() ? "" : " ") + n;
       out << " @values(" << quoted(names) << ')';
+    }
+    if (!v.facts.empty()) {
+      std::string names;
+      for (const std::string& n : v.facts) names += (names.empty() ? "" : " ") + n;
+      out << " @facts(" << quoted(names) << ')';
     }
     out << ";\n";
   }

@@ -231,6 +231,7 @@ void Translator::variables() {
             v.knows[k.name] = addVar(name + ".knows." + k.name, 0, static_cast<std::int32_t>(k.values.size()), 0, robot,
                                      {VariableRole::Kind::Knows, r, t, model::kNone, k.name});
             out_.variables.back().isBool = false;
+            out_.variables.back().facts = k.values;
           }
         }
       }

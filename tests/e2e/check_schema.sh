@@ -1,6 +1,6 @@
 #!/bin/sh
 # specs/{check,lint,sdf,analyze}.schema.json against real outputs: check (a safety violation with
-# both engines, a lasso, vacuous checks, a selection), lint (clean, errors, notes), sdf (a mission, a
+# both engines, a lasso, a lasso naming knowledge facts, vacuous checks, a selection), lint (clean, errors, notes), sdf (a mission, a
 # deadlocking graph), analyze (exact, estimated, two missions); a broken check output must fail.
 # Arguments: SEMO_VERIFY SOURCE_DIR WORK_DIR
 set -eu
@@ -12,6 +12,7 @@ keep check deadlock specs/defects/double_receive.semo -s specs/defects/strategy.
 keep check deadlock_smt specs/defects/double_receive.semo -s specs/defects/strategy.xml --engine smt --max-depth 12
 keep check formation_smt specs/defects/lone_lidar.semo -s specs/defects/strategy.xml --engine smt --max-depth 3
 keep check lasso tests/e2e/ir/retry_delivery_weak.ir
+keep check facts specs/defects/liveness/stuck_gossip.semo -s specs/defects/liveness/strategy.xml
 keep check vacuous tests/e2e/inputs/vacuous_checks.semo -s tests/diagnostics/common/strategy.xml
 keep check selection specs/examples/swarm/swarm3.semo -s specs/examples/swarm/strategy.xml --prop mode_agreement --loss events --crash 1:Swarm
 keep lint clean specs/examples/scouting/scouting.semo -s specs/examples/scouting/strategy.xml
@@ -28,7 +29,7 @@ import json, pathlib, sys
 import jsonschema
 specs, work = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
 counts, validators = {}, {}
-for kind, expected in (("check", 6), ("lint", 3), ("sdf", 2), ("analyze", 4)):
+for kind, expected in (("check", 7), ("lint", 3), ("sdf", 2), ("analyze", 4)):
     schema = json.load(open(specs / f"{kind}.schema.json"))
     jsonschema.Draft202012Validator.check_schema(schema)
     validators[kind] = validator = jsonschema.Draft202012Validator(schema)
@@ -38,6 +39,9 @@ for kind, expected in (("check", 6), ("lint", 3), ("sdf", 2), ("analyze", 4)):
         errors = list(validator.iter_errors(json.load(open(f))))
         assert not errors, f"{kind}/{f.name}: {errors[0].message} at {list(errors[0].path)}"
     counts[kind] = len(files)
+named = [c["facts"] for p in json.load(open(work / "check" / "facts.json"))["properties"] if "counterexample" in p
+         for s in p["counterexample"]["steps"] for c in s["changes"] if "facts" in c]
+assert named == [["north"], ["north", "south"]], f"knowledge facts named in the trace: {named}"
 noted = sum(1 for f in (work / "lint").glob("*.json") for d in json.load(open(f))["diagnostics"] if d.get("notes"))
 assert noted >= 1, "a diagnostic with a note was read"
 broken = json.load(open(work / "check" / "deadlock.json"))

@@ -470,6 +470,31 @@ TEST(SimulatePatrol, GuardsGoRoundDetectScatterAndResume) {
       EXPECT_TRUE(inside(who == "rover" ? h.bumper : h.laser, t->at(who, when), 0.05)) << who << " detected a target at " << when << " s out of range";
     }
     EXPECT_GE(detections, 4);
+    // The shared knowledge, fact by fact: a robot finds a fact it lacks, and learns from a peer
+    // only facts it lacks and the peer holds (the trace names them).
+    std::map<std::string, std::set<std::string>> held;
+    int learnt = 0;
+    for (const json& e : t->events("fact")) {
+      const std::string who = e["robot"].get<std::string>(), label = e["label"].get<std::string>();
+      static const std::regex finds("finds visited: (aisle[0-9]+)"), learns("learns visited from ([a-z_0-9]+): (.+)");
+      std::smatch m;
+      if (std::regex_match(label, m, finds)) {
+        EXPECT_TRUE(held[who].insert(m[1]).second) << who << " finds " << m[1] << " again";
+      } else if (std::regex_match(label, m, learns)) {
+        const std::string peer = m[1], list = m[2];
+        for (std::size_t at = 0; at <= list.size();) {
+          const std::size_t end = std::min(list.find(", ", at), list.size());
+          const std::string fact = list.substr(at, end - at);
+          EXPECT_EQ(held[peer].count(fact), 1u) << who << " learns " << fact << " from " << peer << ", who does not hold it";
+          EXPECT_TRUE(held[who].insert(fact).second) << who << " learns " << fact << ", which it held";
+          ++learnt;
+          at = end + 2;
+        }
+      } else {
+        ADD_FAILURE() << "a fact event that names no fact: " << label;
+      }
+    }
+    EXPECT_GE(learnt, 3) << "the guards learn each other's visits";
     for (const std::string& r : t->robots()) {
       for (const auto& [when, p] : t->path(r)) {
         const bool inShelves = p.x > h.shelvesLow.x - 0.15 && p.x < h.shelvesHigh.x + 0.15 && p.y > h.shelvesLow.y - 0.15 &&

@@ -100,8 +100,8 @@ valid_end : scout1.mode == 3 || scout2.mode == 3;
 
 TEST(IrText, RoundTripOfEveryOperatorAndNesting) {
   ir::Model m;
-  m.variables.push_back({"a", -5, 5, 0, false, ir::kNoRobot, {}});
-  m.variables.push_back({"b", 0, 1, 1, true, ir::kNoRobot, {}});
+  m.variables.push_back({"a", -5, 5, 0, false, ir::kNoRobot, {}, {}});
+  m.variables.push_back({"b", 0, 1, 1, true, ir::kNoRobot, {}, {}});
   Expr a = Expr::var(0), b = Expr::var(1);
   std::vector<Expr> exprs;
   for (Op op : {Op::Add, Op::Sub, Op::Mul, Op::Div, Op::Mod, Op::Min, Op::Max, Op::Eq, Op::Ne, Op::Lt, Op::Le,
@@ -125,7 +125,7 @@ TEST(IrText, RoundTripKeepsTheExpressionTrees) {
   // Not only the same text: reading the writer's output gives the same trees, so the writer's
   // parentheses are where the precedences need them.
   ir::Model m;
-  m.variables.push_back({"x", -9, 9, 0, false, ir::kNoRobot, {}});
+  m.variables.push_back({"x", -9, 9, 0, false, ir::kNoRobot, {}, {}});
   Expr x = Expr::var(0);
   m.invariants.push_back({"i1", "", Expr::binary(Op::Sub, x, Expr::binary(Op::Sub, x, x))});
   m.invariants.push_back({"i2", "", Expr::binary(Op::Implies, Expr::binary(Op::Implies, x, x), x)});
@@ -142,7 +142,7 @@ TEST(IrText, RoundTripOfProbabilities) {
   // Small probabilities are written with a decimal point (never 1e-05), so that the reader tells
   // `+ 0.00001 :` (the next outcome) from an addition.
   ir::Model m;
-  m.variables.push_back({"x", 0, 3, 0, false, ir::kNoRobot, {}});
+  m.variables.push_back({"x", 0, 3, 0, false, ir::kNoRobot, {}, {}});
   ir::Rule r;
   r.name = "flip";
   r.guard = Expr::constant(1);
@@ -164,11 +164,11 @@ TEST(IrText, RoundTripOfNamesThatAreNotNameTokens) {
   // (so that they cannot be written back as one array), and strings with line breaks.
   ir::Model m;
   m.robots = {"r"};
-  m.variables.push_back({"pc[0]", 0, 3, 0, false, 0, {}});
-  m.variables.push_back({"pc[1]", 0, 3, 2, false, 0, {}});  // another initial value
-  m.variables.push_back({"pc[2]", 0, 3, 2, false, 0, {}});
-  m.variables.push_back({"q[0]", 0, 1, 0, true, ir::kNoRobot, {}});
-  m.variables.push_back({"q[1]", 0, 1, 0, true, ir::kNoRobot, {}});
+  m.variables.push_back({"pc[0]", 0, 3, 0, false, 0, {}, {}});
+  m.variables.push_back({"pc[1]", 0, 3, 2, false, 0, {}, {}});  // another initial value
+  m.variables.push_back({"pc[2]", 0, 3, 2, false, 0, {}, {}});
+  m.variables.push_back({"q[0]", 0, 1, 0, true, ir::kNoRobot, {}, {}});
+  m.variables.push_back({"q[1]", 0, 1, 0, true, ir::kNoRobot, {}, {}});
   ir::Rule r;
   r.name = "step [r] #1";
   r.label = "two\nlines, \"quoted\"";

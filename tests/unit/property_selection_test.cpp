@@ -22,7 +22,7 @@ TEST(PropertySelection, GlobsTakeStarAndQuestionMarkAndReadBracketsLiterally) {
 
 TEST(PropertySelection, KeepsTheChosenPropertiesAndDropsDeadlockFreedomUnlessChosen) {
   ir::Model m;
-  m.variables.push_back({"x", 0, 1, 0, false, ir::kNoRobot, {}});
+  m.variables.push_back({"x", 0, 1, 0, false, ir::kNoRobot, {}, {}});
   m.invariants.push_back({"unique_leader[A]", "", ir::Expr::constant(1)});
   m.invariants.push_back({"unique_leader[B]", "", ir::Expr::constant(1)});
   m.invariants.push_back({"safe", "", ir::Expr::constant(1)});

@@ -24,6 +24,9 @@ struct Variable {
   bool isBool = false;
   std::int32_t robot = kNoRobot;  // the robot it belongs to, if any (for traces and symmetry)
   std::vector<std::string> valueNames;  // optional names of min, min+1, ... (modes, phases) for traces
+  // A knowledge count (how many facts of a knowledge item a robot holds): the names of the facts,
+  // which traces use to show one assignment of facts that fits the counts (checker/trace.hpp).
+  std::vector<std::string> facts;
 };
 
 enum class Op : std::uint8_t {
