@@ -1,8 +1,8 @@
-#include "knowledge_witness.hpp"
+#include "semo/checker/trace.hpp"
 
 #include <map>
 
-namespace semo::checker::detail {
+namespace semo::checker {
 
 namespace {
 
@@ -93,4 +93,4 @@ KnowledgeWitness knowledgeWitness(const ir::Model& m, const Trace& t) {
   return out;
 }
 
-}  // namespace semo::checker::detail
+}  // namespace semo::checker

@@ -4,7 +4,6 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "knowledge_witness.hpp"
 #include "semo/checker/stepper.hpp"
 
 namespace semo::checker {
@@ -62,7 +61,7 @@ std::string enabledButNotTaken(const ir::Model& m, const Trace& t) {
 
 }  // namespace
 
-// The facts a knowledge count holds after a change, as a trace shows them (knowledge_witness.hpp).
+// The facts a knowledge count holds after a change, as a trace shows them (knowledgeWitness, trace.hpp).
 std::string heldText(const std::vector<std::string>& facts) {
   std::string out;
   for (const std::string& f : facts) out += (out.empty() ? "" : ", ") + f;
@@ -73,7 +72,7 @@ std::string traceToText(const ir::Model& m, const Trace& t) {
   std::ostringstream out;
   out << "counterexample for " << t.property << " (" << t.kind << "): " << t.steps.size() << " step"
       << (t.steps.size() == 1 ? "" : "s") << "\n";
-  const detail::KnowledgeWitness known = detail::knowledgeWitness(m, t);
+  const KnowledgeWitness known = knowledgeWitness(m, t);
   if (known.named) out << "  (facts: the model counts a robot's facts; the names are one assignment that fits the counts)\n";
   for (std::size_t i = 0; i < t.steps.size(); ++i) {
     if (i == t.loopStart) out << "  -- loop starts here (the steps below repeat for ever) --\n";
@@ -131,7 +130,7 @@ std::string traceToJson(const ir::Model& m, const Trace& t) {
     initial[m.variables[v].name] = t.initial[v];
     initialText[m.variables[v].name] = valueText(m.variables[v], t.initial[v]);  // as "fromText"/"toText" show values
   }
-  const detail::KnowledgeWitness known = detail::knowledgeWitness(m, t);
+  const KnowledgeWitness known = knowledgeWitness(m, t);
   json steps = json::array();
   for (std::size_t i = 0; i < t.steps.size(); ++i) {
     const Step& s = t.steps[i];

@@ -88,7 +88,7 @@ TEST(Show, ATraceOfAnotherModelIsRefused) {
 
 // The message sequence chart: a lifeline per robot, a row per step, an arrow from the send to the
 // receive, a lost message dashed and crossed, a crash crossed, mode changes boxed, a lasso's loop
-// framed; check --msc and show --msc draw the same bytes; the picture renders.
+// framed, knowledge facts named; check --msc and show --msc draw the same bytes; the pictures render.
 TEST(Show, TheSequenceChartDrawsWhatTheTraceSays) {
   const fs::path dir = workDir("show_msc");
   const std::string saved = (dir / "cex.json").string(), chart = (dir / "dr.svg").string(), again = (dir / "again.svg").string();
@@ -116,6 +116,15 @@ TEST(Show, TheSequenceChartDrawsWhatTheTraceSays) {
   ASSERT_EQ(verify("check specs/defects/lone_lidar.semo -s specs/defects/strategy.xml --msc '" + crash + "'", dir).exit, 1);
   EXPECT_EQ(count(slurp(crash), "class=\"crash\""), 1u);
 
+  // Knowledge facts named (one assignment that fits the counts), in blue boxes on the finder's lifeline.
+  const std::string facts = (dir / "facts.svg").string();
+  ASSERT_EQ(verify("check specs/defects/liveness/stuck_gossip.semo -s specs/defects/liveness/strategy.xml --msc '" + facts + "'", dir).exit, 1);
+  const std::string gossip = slurp(facts);
+  EXPECT_EQ(count(gossip, "class=\"facts\""), 2u);
+  EXPECT_NE(gossip.find(">north</text>"), std::string::npos);
+  EXPECT_NE(gossip.find(">north, south</text>"), std::string::npos);
+  EXPECT_NE(gossip.find("<title>mapper_0.knows.blocked holds north, south</title>"), std::string::npos);
+
   CliRun none = verify("check specs/examples/swarm/swarm3.semo -s specs/examples/swarm/strategy.xml --msc '" + (dir / "none.svg").string() + "'", dir);
   EXPECT_EQ(none.exit, 0);
   EXPECT_FALSE(fs::exists(dir / "none.svg"));
@@ -125,6 +134,9 @@ TEST(Show, TheSequenceChartDrawsWhatTheTraceSays) {
   const std::string command = "'" SEMO_RSVG_CONVERT "' '" + chart + "' -o '" + (dir / "dr.png").string() + "'";
   ASSERT_EQ(std::system(command.c_str()), 0);
   EXPECT_GT(fs::file_size(dir / "dr.png"), 10000U);
+  const std::string factsCommand = "'" SEMO_RSVG_CONVERT "' '" + facts + "' -o '" + (dir / "facts.png").string() + "'";
+  ASSERT_EQ(std::system(factsCommand.c_str()), 0);
+  EXPECT_GT(fs::file_size(dir / "facts.png"), 5000U);
 }
 
 }  // namespace

@@ -1,10 +1,9 @@
-// Knowledge facts named in traces (checker/src/knowledge_witness.hpp): the model counts a robot's
+// Knowledge facts named in traces (checker/trace.hpp): the model counts a robot's
 // facts; a trace shows one assignment of named facts that fits every count, or none at all.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
-#include "../../checker/src/knowledge_witness.hpp"
 #include "ir_support.hpp"
 #include "semo/checker/trace.hpp"
 #include "semo/semantics/ir_text.hpp"
@@ -44,7 +43,7 @@ TEST(KnowledgeWitness, NamesFoundFactsNobodyHoldsFirstAndLearntOnesFromTheTeache
   ASSERT_EQ(m.variables.at(kA).facts, (std::vector<std::string>{"red", "yellow", "blue"}));
   const Trace t = traceOf({step(kAFinds, kA, 0, 1), step(kAFinds, kA, 1, 2), step(kBFinds, kB, 0, 1), step(kBLearns3, kB, 1, 3),
                            step(kACrash, kA, 2, 0)});
-  const detail::KnowledgeWitness w = detail::knowledgeWitness(m, t);
+  const KnowledgeWitness w = knowledgeWitness(m, t);
   ASSERT_TRUE(w.named);
   using Names = std::vector<std::string>;
   EXPECT_EQ(w.held[0][0], (Names{"red"}));
@@ -66,9 +65,9 @@ TEST(KnowledgeWitness, NamesNothingWhenNoAssignmentFitsTheCounts) {
   // the facts overlap); no assignment of named facts does that, so the trace names none.
   const ir::Model m = test::parseIr(kModel);
   const Trace t = traceOf({step(kAFinds, kA, 0, 1), step(kBFinds, kB, 0, 1), step(kAFinds, kA, 1, 2)});
-  EXPECT_TRUE(detail::knowledgeWitness(m, t).named) << "a fits: red, then b blue, then a yellow";
+  EXPECT_TRUE(knowledgeWitness(m, t).named) << "a fits: red, then b blue, then a yellow";
   const Trace overlapping = traceOf({step(kAFinds, kA, 0, 1), step(kBLearns2, kB, 0, 2)});
-  const detail::KnowledgeWitness w = detail::knowledgeWitness(m, overlapping);
+  const KnowledgeWitness w = knowledgeWitness(m, overlapping);
   EXPECT_FALSE(w.named);
   const std::string text = traceToText(m, overlapping);
   EXPECT_EQ(text.find("holds"), std::string::npos) << text;

@@ -116,6 +116,7 @@ std::string sequenceChartSvg(const ir::Model& model, const checker::Trace& trace
   }
 
   // The steps: text on the left, a mark on the lifeline.
+  const checker::KnowledgeWitness known = checker::knowledgeWitness(model, trace);
   for (std::size_t k = 0; k < steps; ++k) {
     const checker::Step& s = trace.steps[k];
     const ir::Rule& rule = model.rules[s.rule];
@@ -134,20 +135,30 @@ std::string sequenceChartSvg(const ir::Model& model, const checker::Trace& trace
     }
     out += fmt::format("<circle class=\"mark\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" fill=\"{}\"/>\n", x, y,
                        rule.kind == ir::RuleKind::Loss ? "#c0392b" : "#333");
-    // A mode or role that changes: a box with the new one on the robot's lifeline.
-    for (const checker::Change& c : s.changes) {
+    // A mode or role that changes: a box with the new one on the robot's lifeline; so do the
+    // facts a robot holds, where the trace names them.
+    for (std::size_t j = 0; j < s.changes.size(); ++j) {
+      const checker::Change& c = s.changes[j];
       const ir::Variable& var = model.variables[c.var];
       if (var.robot < 0) continue;
       const std::string shortName = variableShortName(model, c.var);
       std::string box;
+      bool facts = false;
       if (shortName == "mode") box = checker::valueText(var, c.after);
       else if (shortName.rfind("leads.", 0) == 0 && c.after != 0) box = "leads " + shortName.substr(6, shortName.rfind('.') - 6);
       else if (shortName.rfind("leads.", 0) == 0) box = "steps down";
+      else if (known.named && !var.facts.empty()) {
+        for (const std::string& f : known.held[k][j]) box += (box.empty() ? "" : ", ") + f;
+        if (box.empty()) box = "holds none";
+        facts = true;
+      }
       if (box.empty()) continue;
       const double bx = laneX(var.robot), w = std::min(kLane - 10, 7.0 * static_cast<double>(box.size()) + 10);
-      out += fmt::format("<rect class=\"state\" x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"16\" rx=\"3\" fill=\"#e8f4e8\" "
-                         "stroke=\"#27ae60\"/>\n<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\" font-size=\"10\">{}</text>\n",
-                         bx - w / 2, y + 5, w, bx, y + 17, svgEscaped(shortened(box, 16)));
+      // The facts held, in blue, with the whole list in the tooltip when it does not fit.
+      out += fmt::format("<rect class=\"{}\" x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"16\" rx=\"3\" fill=\"{}\" "
+                         "stroke=\"{}\"><title>{}</title></rect>\n<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\" font-size=\"10\">{}</text>\n",
+                         facts ? "facts" : "state", bx - w / 2, y + 5, w, facts ? "#e8f0fb" : "#e8f4e8", facts ? "#2e6fb7" : "#27ae60",
+                         svgEscaped(facts ? var.name + " holds " + box : box), bx, y + 17, svgEscaped(shortened(box, 16)));
     }
   }
   for (const Arrow& a : arrows) {
