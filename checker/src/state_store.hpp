@@ -49,7 +49,8 @@ class StateStore {
   [[nodiscard]] std::uint64_t bytes() const {
     std::uint64_t slots = 0;
     for (const Partition& p : partitions_) slots += p.slots.capacity();
-    return chunks_.size() * (std::size_t{1} << kChunkBits) * words_ * 8 + slots * 8 + parent_.capacity() * 4 + via_.capacity() * 4;
+    // The states' data as far as states fill it (the rest of the last chunk is never touched).
+    return size() * words_ * 8 + slots * 8 + parent_.capacity() * 4 + via_.capacity() * 4;
   }
   // data, parent, via, and the hash table (8-byte slots, at most half full)
   [[nodiscard]] std::uint64_t bytesPerState() const { return words_ * 8 + 4 + 4 + 16; }
@@ -138,7 +139,12 @@ class StateStore {
   // Serial: adds n states (to be filled in: stateToFill, setOrigin) after the stored ones.
   void append(std::size_t n) {
     const std::size_t end = size() + n;
-    while ((chunks_.size() << kChunkBits) < end) chunks_.push_back(std::make_unique<std::uint64_t[]>((std::size_t{1} << kChunkBits) * words_));
+    // Not zeroed: each state is written whole before it is read, and a chunk's pages are then
+    // taken from the system only as states fill them, so that a wide state vector with few states
+    // (5,000 variables, 4 states) does not cost a whole chunk (410 MB) up front.
+    while ((chunks_.size() << kChunkBits) < end) {
+      chunks_.push_back(std::make_unique_for_overwrite<std::uint64_t[]>((std::size_t{1} << kChunkBits) * words_));
+    }
     parent_.resize(end);
     via_.resize(end);
   }
