@@ -111,11 +111,11 @@ ast::Expr Parser::parseExpr() {
 }
 
 std::unique_ptr<ast::Cond> Parser::parseCond() {
-  return leftAssociative<ast::Cond>(Tok::KwOr, ast::Cond::Kind::Or, [this] { return parseAndCond(); });
+  return associativeChain<ast::Cond>(Tok::KwOr, ast::Cond::Kind::Or, [this] { return parseAndCond(); });
 }
 
 std::unique_ptr<ast::Cond> Parser::parseAndCond() {
-  return leftAssociative<ast::Cond>(Tok::KwAnd, ast::Cond::Kind::And, [this] { return parseNotCond(); });
+  return associativeChain<ast::Cond>(Tok::KwAnd, ast::Cond::Kind::And, [this] { return parseNotCond(); });
 }
 
 std::unique_ptr<ast::Cond> Parser::parseNotCond() {

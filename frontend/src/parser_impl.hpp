@@ -61,19 +61,33 @@ class Parser {
   void parseTopic(ast::Stmt& stmt, bool withValue);
   [[nodiscard]] bool atStatementStart() const;
 
-  // `next (op next)*`, folded to the left: the shared shape of `and` / `or` in conditions and LTL.
+  // `next (op next)*`: the shared shape of `and` / `or` in conditions and LTL.
   template <typename Node, typename Next>
-  std::unique_ptr<Node> leftAssociative(Tok op, typename Node::Kind kind, Next next) {
-    auto left = next();
+  std::unique_ptr<Node> associativeChain(Tok op, typename Node::Kind kind, Next next) {
+    // `and` and `or` associate: a chain is read in a loop and held as a balanced tree, log n deep,
+    // so that a condition of 100,000 terms is as safe to elaborate (recursively) as one of ten.
+    std::vector<std::unique_ptr<Node>> operands;
+    std::vector<SourceRange> operators;
+    operands.push_back(next());
     while (at(op)) {
-      auto node = std::make_unique<Node>();
-      node->kind = kind;
-      node->range = advance().range;
-      node->left = std::move(left);
-      node->right = next();
-      left = std::move(node);
+      operators.push_back(advance().range);
+      operands.push_back(next());
     }
-    return left;
+    return balanced<Node>(kind, operands, operators, 0, operands.size());
+  }
+  // operands[first, last) joined by the operators between them; a node's range is the operator
+  // that joins its two halves.
+  template <typename Node>
+  static std::unique_ptr<Node> balanced(typename Node::Kind kind, std::vector<std::unique_ptr<Node>>& operands,
+                                        const std::vector<SourceRange>& operators, std::size_t first, std::size_t last) {
+    if (last - first == 1) return std::move(operands[first]);
+    const std::size_t middle = first + (last - first) / 2;
+    auto node = std::make_unique<Node>();
+    node->kind = kind;
+    node->range = operators[middle - 1];
+    node->left = balanced<Node>(kind, operands, operators, first, middle);
+    node->right = balanced<Node>(kind, operands, operators, middle, last);
+    return node;
   }
 
   // expressions (parser_exprs.cpp)

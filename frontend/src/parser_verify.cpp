@@ -172,11 +172,11 @@ std::unique_ptr<ast::Ltl> Parser::parseLtlUntil() {
 }
 
 std::unique_ptr<ast::Ltl> Parser::parseLtlOr() {
-  return leftAssociative<ast::Ltl>(Tok::KwOr, ast::Ltl::Kind::Or, [this] { return parseLtlAnd(); });
+  return associativeChain<ast::Ltl>(Tok::KwOr, ast::Ltl::Kind::Or, [this] { return parseLtlAnd(); });
 }
 
 std::unique_ptr<ast::Ltl> Parser::parseLtlAnd() {
-  return leftAssociative<ast::Ltl>(Tok::KwAnd, ast::Ltl::Kind::And, [this] { return parseLtlUnary(); });
+  return associativeChain<ast::Ltl>(Tok::KwAnd, ast::Ltl::Kind::And, [this] { return parseLtlUnary(); });
 }
 
 std::unique_ptr<ast::Ltl> Parser::parseLtlUnary() {

@@ -7,13 +7,23 @@ namespace semo::ir {
 namespace {
 constexpr std::array<const char*, 6> kKindNames{"step", "delivery", "loss", "crash", "environment", "timer"};
 
+// parts[first, last) as a balanced tree: recursion as deep as the tree, log n.
+Expr balanced(Op op, std::vector<Expr>& parts, std::size_t first, std::size_t last) {
+  if (last - first == 1) return std::move(parts[first]);
+  const std::size_t middle = first + (last - first) / 2;
+  Expr left = balanced(op, parts, first, middle);
+  return Expr::binary(op, std::move(left), balanced(op, parts, middle, last));
+}
+
 Expr fold(std::vector<Expr> parts, Op op, std::int32_t empty) {
   if (parts.empty()) return Expr::constant(empty);
-  Expr out = std::move(parts.front());
-  for (std::size_t i = 1; i < parts.size(); ++i) out = Expr::binary(op, std::move(out), std::move(parts[i]));
-  return out;
+  return balanced(op, parts, 0, parts.size());
 }
 }  // namespace
+
+bool isAssociative(Op op) { return op == Op::And || op == Op::Or || op == Op::Add || op == Op::Mul; }
+
+Expr associated(Op op, std::vector<Expr> parts) { return balanced(op, parts, 0, parts.size()); }
 
 std::string Origin::text() const {
   if (line == 0) return file;

@@ -1,4 +1,5 @@
 // Reads the text form of the IR (specs/ir.md).
+#include <algorithm>
 #include <charconv>
 #include <cstdint>
 #include <cmath>
@@ -197,7 +198,7 @@ class Reader {
       advance();
       Invariant inv;
       verdictHeader("invariant", inv.name, inv.origin);
-      inv.holds = expr();
+      inv.holds = wholeExpr();
       expect(";", "after the invariant");
       model_.invariants.push_back(std::move(inv));
     } else if (isWord("property")) {
@@ -211,7 +212,7 @@ class Reader {
       const Token& at = advance();
       if (model_.validEnd) fail(at, "valid_end is given twice");
       expect(":", "after 'valid_end'");
-      model_.validEnd = expr();
+      model_.validEnd = wholeExpr();
       expect(";", "after valid_end");
     } else {
       fail(peek(), "expected 'var', 'rule', 'invariant', 'property', 'valid_end', 'robots' or 'assume', found " + found());
@@ -379,7 +380,7 @@ class Reader {
       return false;
     });
     expect(":", "after the rule name");
-    r.guard = expr();
+    r.guard = wholeExpr();
     expect("->", "after the guard");
     double total = 0;
     do {
@@ -414,7 +415,7 @@ class Reader {
           }
           expect("'", "after the assigned variable (write x' = ...)");
           expect("=", "in the assignment");
-          b.assignments.push_back({it->second, expr()});
+          b.assignments.push_back({it->second, wholeExpr()});
         } while (accept(","));
       }
       r.branches.push_back(std::move(b));
@@ -448,10 +449,18 @@ class Reader {
   }
   Ltl ltlChain(int depth, int level) {  // level 0: ||, level 1: &&
     if (level == 2) return ltlPrefix(depth);
-    Ltl left = ltlChain(depth, level + 1);
+    // A chain as a balanced tree (log n deep), as for expressions.
+    std::vector<Ltl> parts;
+    parts.push_back(ltlChain(depth, level + 1));
     const char* op = level == 0 ? "||" : "&&";
-    while (accept(op)) left = Ltl::binary(level == 0 ? Ltl::Kind::Or : Ltl::Kind::And, std::move(left), ltlChain(depth, level + 1));
-    return left;
+    while (accept(op)) parts.push_back(ltlChain(depth, level + 1));
+    return ltlBalanced(level == 0 ? Ltl::Kind::Or : Ltl::Kind::And, parts, 0, parts.size());
+  }
+  static Ltl ltlBalanced(Ltl::Kind kind, std::vector<Ltl>& parts, std::size_t first, std::size_t last) {
+    if (last - first == 1) return std::move(parts[first]);
+    const std::size_t middle = first + (last - first) / 2;
+    Ltl left = ltlBalanced(kind, parts, first, middle);
+    return Ltl::binary(kind, std::move(left), ltlBalanced(kind, parts, middle, last));
   }
   Ltl ltlPrefix(int depth) {
     if (depth > 200) fail(peek(), "formula nested too deeply");
@@ -468,17 +477,39 @@ class Reader {
       return f;
     }
     if (!accept("{")) fail(peek(), "expected a state formula in braces '{...}', a temporal operator or '(', found " + found());
-    Expr e = expr();
+    Expr e = wholeExpr();
     expect("}", "to close the state formula");
     return Ltl::of(std::move(e));
   }
 
   // ---- expressions, loosest first: ?:  =>  ||  &&  == !=  < <= > >=  + -  * / %  unary
   // Nesting (parentheses, prefix operators, right-nested ?: and =>) is limited (nesting.hpp): past
-  // it an error, never a stack overflow. Long flat chains (a && b && ...) are read in a loop and are
-  // not limited.
+  // it an error, never a stack overflow. Long flat chains (a && b && ...) are read in a loop, into
+  // balanced trees where the operator associates; wholeExpr() limits the depth of the whole tree.
   [[nodiscard]] NestingGuard deeper() {
     return NestingGuard(exprDepth_, [this] { fail(peek(), "expression nested too deeply (limit " + std::to_string(kMaxNesting) + ")"); });
+  }
+
+  // An expression as a guard, update, invariant or atom holds it. Its tree is no deeper than
+  // kMaxTreeDepth: long chains of &&, ||, + and * are read into balanced trees (depth log n), but a
+  // chain of an operator that does not associate (-, /, %, comparisons) nests one level per
+  // operator, and every engine walks trees recursively. Measured in one pass over the tree.
+  Expr wholeExpr() {
+    const Token start = peek();
+    Expr e = expr();
+    std::size_t deepest = 0;
+    std::vector<std::pair<const Expr*, std::size_t>> todo{{&e, 1}};
+    while (!todo.empty()) {
+      const auto [node, depth] = todo.back();
+      todo.pop_back();
+      deepest = std::max(deepest, depth);
+      for (const Expr& a : node->args) todo.emplace_back(&a, depth + 1);
+    }
+    if (deepest > kMaxTreeDepth) {
+      fail(start, "expression nested too deeply (" + std::to_string(deepest) + " levels, limit " + std::to_string(kMaxTreeDepth) +
+                      "): a chain of '-', '/', '%' or comparisons nests one level per operator");
+    }
+    return e;
   }
 
   Expr expr() {
@@ -505,7 +536,12 @@ class Reader {
         {{"+", Op::Add}, {"-", Op::Sub}},
         {{"*", Op::Mul}, {"/", Op::Div}, {"%", Op::Mod}}};
     if (level == static_cast<int>(levels.size())) return unary();
-    Expr left = binary(level + 1);
+    // The operands and operators of the chain at this level, then the tree: left to right, a run
+    // of one associative operator (a && b && c, a + b + c) as a balanced tree, so that a chain of
+    // n terms costs n to read and is log n deep (ir::associated).
+    std::vector<Expr> operands;
+    std::vector<Op> ops;
+    operands.push_back(binary(level + 1));
     while (true) {
       bool matched = false;
       for (const auto& [spelling, op] : levels[static_cast<std::size_t>(level)]) {
@@ -513,12 +549,25 @@ class Reader {
         // `+ 0.25 :` starts the next outcome of a probabilistic rule: no expression has a decimal.
         if (op == Op::Add && (peek(1).kind == T::Number || startsFraction(1))) break;
         advance();
-        left = Expr::binary(op, std::move(left), binary(level + 1));
+        ops.push_back(op);
+        operands.push_back(binary(level + 1));
         matched = true;
         break;
       }
-      if (!matched) return left;
+      if (!matched) break;
     }
+    Expr left = std::move(operands[0]);
+    for (std::size_t i = 0; i < ops.size();) {
+      std::size_t end = i + 1;
+      while (isAssociative(ops[i]) && end < ops.size() && ops[end] == ops[i]) ++end;
+      std::vector<Expr> run;
+      run.reserve(end - i + 1);
+      run.push_back(std::move(left));
+      for (std::size_t k = i; k < end; ++k) run.push_back(std::move(operands[k + 1]));
+      left = run.size() == 2 ? Expr::binary(ops[i], std::move(run[0]), std::move(run[1])) : associated(ops[i], std::move(run));
+      i = end;
+    }
+    return left;
   }
   Expr unary() {
     const NestingGuard level = deeper();  // one level per prefix operator or parenthesis
@@ -556,6 +605,7 @@ class Reader {
   std::vector<Token> tokens_;
   std::size_t pos_ = 0;
   std::size_t exprDepth_ = 0;  // deeper()
+  static constexpr std::size_t kMaxTreeDepth = 1024;  // wholeExpr()
   Model model_;
   std::unordered_map<std::string, VarId> varIndex_;
   std::unordered_map<std::string, std::int32_t> robotIndex_;

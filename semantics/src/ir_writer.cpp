@@ -108,10 +108,10 @@ void write(std::ostream& out, const Model& m, const Expr& e, int context) {
       out << " => ";
       write(out, m, e.args[1], p);
       break;
-    default:  // left-associative binary operators
+    default:  // left-associative binary operators; an associative one's chain flat, however bracketed
       write(out, m, e.args[0], p);
       out << ' ' << opSymbol(e.op) << ' ';
-      write(out, m, e.args[1], p + 1);
+      write(out, m, e.args[1], isAssociative(e.op) && e.args[1].op == e.op ? p : p + 1);
       break;
   }
   if (parens) out << ')';
@@ -150,11 +150,13 @@ void writeLtl(std::ostringstream& out, const Model& m, const Ltl& f, int context
       writeLtl(out, m, f.args[0], 5);
       break;
     default:
-      // Binary: left-nested chains of || and && need no parentheses; => and until nest to the right.
+      // Binary: chains of || and && need no parentheses, however bracketed (they associate; the
+      // reader holds them balanced); => and until nest to the right.
       bool rightAssoc = f.kind == Ltl::Kind::Implies || f.kind == Ltl::Kind::Until || f.kind == Ltl::Kind::Release;
+      bool chain = (f.kind == Ltl::Kind::And || f.kind == Ltl::Kind::Or) && f.args[1].kind == f.kind;
       writeLtl(out, m, f.args[0], rightAssoc ? mine + 1 : mine);
       out << ' ' << ltlKeyword(f.kind) << ' ';
-      writeLtl(out, m, f.args[1], rightAssoc ? mine : mine + 1);
+      writeLtl(out, m, f.args[1], rightAssoc || chain ? mine : mine + 1);
   }
   if (parens) out << ')';
 }

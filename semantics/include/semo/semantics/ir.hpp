@@ -38,6 +38,18 @@ enum class Op : std::uint8_t {
   Ite,  // args: condition, then, else
 };
 
+// The operands of a new node, moved in. A braced list ({std::move(a), std::move(b)}) would not do:
+// a vector built from an initializer list copies its elements, so every node built on an operand
+// copied the operand's whole tree, and a chain of n terms read left to right cost n^2 (a guard of
+// 20,000 conjuncts took two minutes to read; bench/expression_bench.sh).
+template <typename T, typename... Parts>
+std::vector<T> movedOperands(Parts&&... parts) {
+  std::vector<T> out;
+  out.reserve(sizeof...(parts));
+  (out.push_back(std::forward<Parts>(parts)), ...);
+  return out;
+}
+
 struct Expr {
   Op op = Op::Const;
   std::int32_t value = 0;  // Const: the constant; Var: the VarId
@@ -45,15 +57,22 @@ struct Expr {
 
   static Expr constant(std::int32_t v) { return {Op::Const, v, {}}; }
   static Expr var(VarId id) { return {Op::Var, static_cast<std::int32_t>(id), {}}; }
-  static Expr unary(Op op, Expr a) { return {op, 0, {std::move(a)}}; }
-  static Expr binary(Op op, Expr a, Expr b) { return {op, 0, {std::move(a), std::move(b)}}; }
-  static Expr ite(Expr c, Expr t, Expr e) { return {Op::Ite, 0, {std::move(c), std::move(t), std::move(e)}}; }
+  static Expr unary(Op op, Expr a) { return {op, 0, movedOperands<Expr>(std::move(a))}; }
+  static Expr binary(Op op, Expr a, Expr b) { return {op, 0, movedOperands<Expr>(std::move(a), std::move(b))}; }
+  static Expr ite(Expr c, Expr t, Expr e) { return {Op::Ite, 0, movedOperands<Expr>(std::move(c), std::move(t), std::move(e))}; }
   [[nodiscard]] bool isTrue() const { return op == Op::Const && value != 0; }
 };
 
-// Folds a list with And / Or; the empty conjunction is true, the empty disjunction false.
+// Folds a list with And / Or; the empty conjunction is true, the empty disjunction false. The
+// tree is balanced (log n deep): a guard over every robot of a large team stays shallow.
 Expr conjunction(std::vector<Expr> parts);
 Expr disjunction(std::vector<Expr> parts);
+
+// And, Or, Add and Mul: a chain of one of them means the same however it is bracketed (integers
+// wrap the same way), so chains are held as balanced trees and written without brackets.
+bool isAssociative(Op op);
+// parts[0] op parts[1] op ... as a balanced tree; parts must not be empty.
+Expr associated(Op op, std::vector<Expr> parts);
 
 // The infix spelling of a binary operator (C's, and `=>` for Implies); "?" for the others.
 const char* opSymbol(Op op);
@@ -133,8 +152,8 @@ struct Ltl {
   std::vector<Ltl> args;  // one for the unary kinds, two for the binary ones
 
   static Ltl of(Expr e) { return {Kind::Atom, std::move(e), {}}; }
-  static Ltl unary(Kind k, Ltl a) { return {k, {}, {std::move(a)}}; }
-  static Ltl binary(Kind k, Ltl a, Ltl b) { return {k, {}, {std::move(a), std::move(b)}}; }
+  static Ltl unary(Kind k, Ltl a) { return {k, {}, movedOperands<Ltl>(std::move(a))}; }
+  static Ltl binary(Kind k, Ltl a, Ltl b) { return {k, {}, movedOperands<Ltl>(std::move(a), std::move(b))}; }
 };
 const char* ltlKeyword(Ltl::Kind kind);  // "always", "until", ... ; "" for Atom
 
