@@ -94,7 +94,9 @@ case "$mode" in
     ;;
   fuzz)
     step "build the fuzz targets (clang, build-fuzz/)"
-    build build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DSEMO_FUZZ=ON
+    # clang for C too: the runtime compiles the C that Cyclone DDS's idlc generates, and gcc knows no
+    # -fsanitize=fuzzer-no-link.
+    build build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DSEMO_FUZZ=ON
     seconds="${FUZZ_SECONDS:-300}"
     targets=(fuzz_mission_parser fuzz_strategy_reader fuzz_ir_reader fuzz_sdf3_reader fuzz_taskgraph_reader
              fuzz_trace_reader fuzz_world_reader fuzz_packet_decode fuzz_tables_reader)
@@ -127,11 +129,19 @@ case "$mode" in
     for f in build-fuzz/emitted/mission/mission_tables.cpp build-fuzz/emitted/robots/*/tables.cpp; do
       cp "$f" "build-fuzz/corpus-fuzz_tables_reader/$(echo "$f" | tr / _)"
     done
+    # Each target with the dictionary of its language (tests/fuzz/dict, the reader's own words),
+    # and inputs up to 64 KiB: long enough for the nesting limits (256 levels) and for long lines
+    # and lists, which a few kilobytes never reach.
+    declare -A dictionary=([fuzz_mission_parser]=mission [fuzz_strategy_reader]=strategy [fuzz_ir_reader]=ir
+                           [fuzz_sdf3_reader]=sdf3 [fuzz_taskgraph_reader]=taskgraph [fuzz_trace_reader]=trace
+                           [fuzz_world_reader]=world)
     for target in "${targets[@]}"; do
       corpus="build-fuzz/corpus-$target"
-      echo "== fuzzing $target for ${seconds}s"
-      ./build-fuzz/tests/fuzz/"$target" -max_total_time="$seconds" -max_len=8192 -timeout=10 \
-        -artifact_prefix=build-fuzz/ "$corpus"
+      dict=()
+      [ -z "${dictionary[$target]:-}" ] || dict=(-dict="tests/fuzz/dict/${dictionary[$target]}.dict")
+      echo "== fuzzing $target for ${seconds}s ${dict[*]:-}"
+      ./build-fuzz/tests/fuzz/"$target" -max_total_time="$seconds" -max_len=65536 -timeout=10 -rss_limit_mb=4096 \
+        "${dict[@]}" -artifact_prefix=build-fuzz/ "$corpus"
     done
     ;;
   *)
