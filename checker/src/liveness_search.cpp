@@ -140,6 +140,17 @@ Outcome decide(const CompiledModel& cm, const ControlFacts& facts, std::size_t k
     o.method.states = o.states;
     return o;
   }
+  std::uint64_t spent = 0;  // product states of a whole search that did not fit
+  if (options.wholeFirstStates > 0) {
+    SearchLimits small = limits;
+    small.maxStates = std::min(limits.maxStates, options.wholeFirstStates);
+    Outcome whole = checkProperty(cm, prop, small, start, symmetry);
+    if (whole.whole) {
+      whole.method.states = whole.states;
+      return whole;
+    }
+    spent = whole.states;
+  }
   detail::SlicedOutcome sliced = detail::checkSliced(cm, facts, k, limits, options.sliceStates, options.symbolic, options.walks ? std::optional<std::uint64_t>(options.walkSeed) : std::nullopt);
   LivenessMethod method{true, sliced.keptVariables, sliced.refinements, sliced.states, {}};
   method.symbolic = sliced.symbolic;
@@ -147,7 +158,8 @@ Outcome decide(const CompiledModel& cm, const ControlFacts& facts, std::size_t k
   method.hunted = sliced.hunted;
   method.walked = sliced.walked;
   method.walks = sliced.walks;
-  Outcome out{sliced.property, sliced.states, sliced.transitions, true, {}, sliced.reduced, {}, method};
+  method.states += spent;
+  Outcome out{sliced.property, sliced.states + spent, sliced.transitions, true, {}, sliced.reduced, {}, method};
   if (sliced.property.verdict == Verdict::Proven) return out;
   if (sliced.property.verdict == Verdict::Violated) {
     if (!options.wholeProduct) return out;

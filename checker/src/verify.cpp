@@ -14,6 +14,12 @@ namespace semo::checker {
 
 namespace {
 
+// A safety search that covered the whole state space within this many states makes each LTL
+// property's product be searched whole first, within kWholeFirstProduct product states
+// (LivenessOptions::wholeFirstStates); larger models go to the slices first.
+constexpr std::uint64_t kWholeFirstReachable = 500'000;
+constexpr std::uint64_t kWholeFirstProduct = 2'000'000;
+
 std::string steps(std::size_t n) { return std::to_string(n) + (n == 1 ? " step" : " steps"); }
 
 bool anyViolated(const std::vector<PropertyResult>& properties) {
@@ -113,7 +119,10 @@ void runLiveness(Report& out, const ir::Model& model, const VerifyOptions& optio
   else if (r.rangeError) out.livenessSkipped = "not checked: the model has an error";
   else if (limits.maxDepth != UINT32_MAX) out.livenessSkipped = "not checked: --max-depth bounds safety only";
   if (out.livenessSkipped.empty()) {
-    live = checkLiveness(model, limits, liveness);
+    // A small state space, explored whole: each product is searched whole first (exact, fast).
+    LivenessOptions tuned = liveness;
+    if (tuned.wholeProduct && !tuned.slicesFirst && r.complete && r.states > 0 && r.states <= kWholeFirstReachable) tuned.wholeFirstStates = kWholeFirstProduct;
+    live = checkLiveness(model, limits, tuned);
   } else {
     live.complete = false;
     live.limitReached = out.livenessSkipped;

@@ -128,6 +128,7 @@ checker::VerifyOptions verifyOptions(const CheckOptions& options) {
   v.limits.maxDepth = options.maxDepth;
   v.limits.symmetry = options.symmetry;
   v.liveness.slicing = options.slicing;
+  v.liveness.slicesFirst = options.slicesFirst;
   v.liveness.symbolic = options.symbolic;
   v.liveness.walks = options.walks;
   v.liveness.walkSeed = options.walkSeed;

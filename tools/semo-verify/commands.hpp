@@ -60,6 +60,7 @@ struct CheckOptions {
   std::uint32_t maxDepth = UINT32_MAX;
   bool symmetry = true;
   bool slicing = true;
+  bool slicesFirst = false;     // LivenessOptions::slicesFirst
   bool symbolic = true;
   bool walks = true;            // LivenessOptions::walks
   std::uint64_t walkSeed = 1;   // LivenessOptions::walkSeed

@@ -96,6 +96,8 @@ int main(int argc, char** argv) {
                            "Store every state, not one per ordering of interchangeable robots (both searches)");
     cmd->add_flag_callback("--no-slicing", [&check] { check.slicing = false; },
                            "Decide each LTL property on the product of the whole model, not on slices of it refined by counterexamples");
+    cmd->add_flag_callback("--slices-first", [&check] { check.slicesFirst = true; },
+                           "Decide each LTL property on slices first even when the whole state space is small (a small one's products are searched whole first)");
     cmd->add_flag_callback("--no-symbolic", [&check] { check.symbolic = false; },
                            "Give up on a slice too large to enumerate instead of searching it as decision diagrams");
     cmd->add_flag_callback("--no-walks", [&check] { check.walks = false; },
