@@ -151,7 +151,7 @@ std::string traceToJson(const ir::Model& m, const Trace& t) {
   }
   json root = {{"property", t.property}, {"kind", t.kind}, {"initial", initial}, {"initialText", initialText}, {"steps", steps}};
   if (t.loopStart != SIZE_MAX) root["loopStart"] = t.loopStart + 1;
-  return root.dump(2) + "\n";
+  return root.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace semo::checker

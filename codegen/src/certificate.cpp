@@ -197,7 +197,7 @@ std::string certificateJson(const model::MissionModel& /*mission*/, const Transl
       {"method", "the tables in the generated sources, read back without a compiler, equal the IR's projection onto each robot "
                  "recomputed from the inputs: one row per rule of the robot's program, with the same guards and effects"},
       {"robots", robots}};
-  return root.dump(2) + "\n";
+  return root.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace semo::codegen

@@ -228,7 +228,7 @@ std::string missionToJson(const ast::Mission& m) {
     verifies.push_back(jv);
   }
   json root = {{"teams", teams}, {"services", services}, {"modes", modes}, {"mains", mains}, {"verify", verifies}};
-  return root.dump(2) + "\n";
+  return root.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 std::string missionSummary(const ast::Mission& m) {

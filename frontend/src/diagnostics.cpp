@@ -18,6 +18,10 @@ const char* severityName(Severity s) {
   return "error";
 }
 
+// Source lines longer than this are shown as a window of this many bytes, from this many before the caret.
+constexpr std::size_t kShownLine = 200;
+constexpr std::size_t kShownBefore = 80;
+
 std::size_t editDistance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> row(b.size() + 1);
   for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
@@ -71,13 +75,28 @@ void DiagnosticEngine::formatOne(std::string& out, const Diagnostic& d) const {
   if (!at.hasPosition()) return;
   std::string_view line = sources_->lineText(at.file, at.line);
   if (line.empty()) return;
-  out.append(line);
+  std::size_t column = std::max<std::uint32_t>(at.column, 1);
+  // A long line is shown as a window around the caret, "..." where it is cut: printed whole, one
+  // line of a megabyte under each of its thousands of errors would make the output quadratic.
+  std::string shown;
+  if (line.size() <= kShownLine) {
+    shown = line;
+  } else {
+    std::size_t begin = column - 1 > kShownBefore ? std::min(column - 1, line.size()) - kShownBefore : 0;
+    std::size_t end = std::min(line.size(), begin + kShownLine);
+    // Cut between characters, not inside a UTF-8 sequence.
+    while (begin > 0 && (static_cast<unsigned char>(line[begin]) & 0xC0) == 0x80) --begin;
+    while (end < line.size() && end > begin && (static_cast<unsigned char>(line[end]) & 0xC0) == 0x80) --end;
+    const std::string lead = begin > 0 ? "..." : "";
+    shown = lead + std::string(line.substr(begin, end - begin)) + (end < line.size() ? "..." : "");
+    column = lead.size() + column - begin;
+  }
+  out += shown;
   out += '\n';
-  std::uint32_t column = std::max<std::uint32_t>(at.column, 1);
   // Keep tabs so that the caret lines up under the same columns as the source line.
-  for (std::uint32_t i = 1; i < column && i - 1 < line.size(); ++i) out += line[i - 1] == '\t' ? '\t' : ' ';
+  for (std::size_t i = 1; i < column && i - 1 < shown.size(); ++i) out += shown[i - 1] == '\t' ? '\t' : ' ';
   out += '^';
-  std::size_t room = column - 1 < line.size() ? line.size() - column : 0;
+  std::size_t room = column - 1 < shown.size() ? shown.size() - column : 0;
   std::size_t tildes = std::min<std::size_t>(d.range.length > 0 ? d.range.length - 1 : 0, room);
   out.append(tildes, '~');
   out += '\n';

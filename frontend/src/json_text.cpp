@@ -1,6 +1,34 @@
 #include "semo/frontend/json_text.hpp"
 
+#include "semo/frontend/nesting.hpp"
+
 namespace semo {
+
+namespace {
+
+// The offset of the first bracket nested deeper than kMaxNesting, if there is one. Deeper input is
+// refused before the parser sees it: the readers that walk the parsed value (and JSON pointers to
+// its members, whose length grows with the depth) would pay for a depth bomb quadratically.
+std::optional<std::size_t> nestedTooDeeply(const std::string& t) {
+  std::size_t depth = 0;
+  bool inString = false;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const char c = t[i];
+    if (inString) {
+      if (c == '\\') ++i;
+      else if (c == '"') inString = false;
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxNesting) return i;
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
 
 SourceRange jsonRangeAt(FileId file, const std::string& text, std::size_t offset) {
   std::uint32_t line = 1, column = 1;
@@ -20,6 +48,10 @@ std::optional<nlohmann::json> parseJsonFile(const SourceManager& sources, FileId
   // The JSON parser would stop at a NUL byte and ignore what follows it.
   if (const auto nul = text.find('\0'); nul != std::string::npos) {
     diags.error(jsonRangeAt(file, text, nul), "not valid JSON: a NUL byte");
+    return std::nullopt;
+  }
+  if (const auto deep = nestedTooDeeply(text)) {
+    diags.error(jsonRangeAt(file, text, *deep), "nested too deeply (limit " + std::to_string(kMaxNesting) + ")");
     return std::nullopt;
   }
   try {

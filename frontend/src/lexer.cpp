@@ -155,6 +155,10 @@ class Lexer {
       pos_ = end;
       return t;
     }
+    // A string is written out again (traces, JSON, generated code): it must be text.
+    if (const std::size_t bad = firstInvalidUtf8(text_.substr(begin + 1, end - begin - 1)); bad != std::string_view::npos) {
+      diags_.error(rangeAt(begin + 1 + bad, 1), "a string must be UTF-8 text: byte 0x" + hex(static_cast<unsigned char>(text_[begin + 1 + bad])) + " is not");
+    }
     Token t{Tok::String, text_.substr(begin + 1, end - begin - 1), rangeAt(begin, end - begin + 1)};
     pos_ = end + 1;
     return t;

@@ -193,14 +193,30 @@ bool checkJointTree(const XMLElement* robot, xml::Reader& xml) {
     }
     parentLinkOf[childLink] = parent->Attribute("link");
   }
+  // From each child link up to the root; a link whose way up is known to end at the root is not
+  // walked again (else a chain of n links costs n^2), and a link met twice on one walk closes a cycle.
+  std::map<std::string, int> state;  // 1: on the current walk; 2: its way up ends at the root
   for (const auto& [start, joint] : parentJointOf) {
-    std::set<std::string> seen{start};
-    for (auto it = parentLinkOf.find(start); it != parentLinkOf.end(); it = parentLinkOf.find(it->second)) {
-      if (!seen.insert(it->second).second || it->second == start) {
-        xml.error(joint, "invalid URDF: joints form a cycle through link '" + start + "' (a robot's links must form a tree)");
-        return false;
+    std::vector<const std::string*> walk;
+    bool cycle = false;
+    for (const std::string* link = &start;;) {
+      int& s = state[*link];
+      if (s == 2) break;
+      if (s == 1) {
+        cycle = true;
+        break;
       }
+      s = 1;
+      walk.push_back(link);
+      const auto up = parentLinkOf.find(*link);
+      if (up == parentLinkOf.end()) break;
+      link = &up->second;
     }
+    if (cycle) {
+      xml.error(joint, "invalid URDF: joints form a cycle through link '" + start + "' (a robot's links must form a tree)");
+      return false;
+    }
+    for (const std::string* link : walk) state[*link] = 2;
   }
   return ok;
 }

@@ -6,8 +6,74 @@
 
 namespace semo::xml {
 
+namespace {
+
+// tinyxml2 compares each attribute of an element with every one before it (to refuse one given
+// twice): an element of n attributes costs n^2. No element of semo's inputs has more than a dozen.
+constexpr std::size_t kMaxAttributes = 1000;
+
+// The offset of the first start tag with more than kMaxAttributes attributes, if there is one: the
+// '=' outside quoted values of each tag, counted before tinyxml2 reads the text. Comments, CDATA,
+// declarations and processing instructions are skipped; anything malformed is tinyxml2's to report.
+std::optional<std::size_t> tagWithTooManyAttributes(std::string_view t) {
+  for (std::size_t i = t.find('<'); i != std::string_view::npos && i < t.size(); i = t.find('<', i + 1)) {
+    auto skipTo = [&](std::string_view end) {
+      const std::size_t at = t.find(end, i + 1);
+      return at == std::string_view::npos ? t.size() : at + end.size() - 1;
+    };
+    if (t.substr(i, 4) == "<!--") {
+      i = skipTo("-->");
+    } else if (t.substr(i, 9) == "<![CDATA[") {
+      i = skipTo("]]>");
+    } else if (i + 1 < t.size() && (t[i + 1] == '?' || t[i + 1] == '!')) {
+      i = skipTo(">");
+    } else {
+      std::size_t attributes = 0;
+      char quote = 0;
+      std::size_t j = i + 1;
+      for (; j < t.size(); ++j) {
+        const char c = t[j];
+        if (quote != 0) {
+          if (c == quote) quote = 0;
+        } else if (c == '"' || c == '\'') {
+          quote = c;
+        } else if (c == '=') {
+          if (++attributes > kMaxAttributes) return i;
+        } else if (c == '>') {
+          break;
+        }
+      }
+      i = j;
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 bool Reader::parse(tinyxml2::XMLDocument& doc) {
   const std::string& text = sources_.text(file_);
+  // XML is UTF-8 text (tinyxml2 reads no other encoding, and checks none): names and values read
+  // here are written out again, in JSON among others.
+  if (const std::size_t bad = firstInvalidUtf8(text); bad != std::string_view::npos) {
+    static const char* digits = "0123456789abcdef";
+    const auto byte = static_cast<unsigned char>(text[bad]);
+    diags_.error({sources_.locationAt(file_, bad), 1}, std::string("malformed XML: not UTF-8 text (byte 0x") + digits[byte >> 4] + digits[byte & 15] + ")");
+    return false;
+  }
+  if (const auto tag = tagWithTooManyAttributes(text)) {
+    std::uint32_t line = 1, column = 1;
+    for (std::size_t i = 0; i < *tag; ++i) {
+      if (text[i] == '\n') ++line, column = 1;
+      else ++column;
+    }
+    std::size_t nameEnd = *tag + 1;
+    while (nameEnd < text.size() && std::string_view(" \t\r\n/>").find(text[nameEnd]) == std::string_view::npos) ++nameEnd;
+    const std::string name = text.substr(*tag + 1, std::min<std::size_t>(nameEnd - *tag - 1, 100));
+    diags_.error({{file_, line, column}, static_cast<std::uint32_t>(name.size() + 1)},
+                 "element <" + name + "> has more than " + std::to_string(kMaxAttributes) + " attributes");
+    return false;
+  }
   if (doc.Parse(text.data(), text.size()) == tinyxml2::XML_SUCCESS) {
     const tinyxml2::XMLElement* root = doc.RootElement();
     if (root != nullptr && root->NextSiblingElement() != nullptr) {
@@ -54,11 +120,16 @@ bool Reader::parse(tinyxml2::XMLDocument& doc) {
 
 SourceRange Reader::at(const tinyxml2::XMLElement* e) const {
   auto line = static_cast<std::uint32_t>(std::max(e->GetLineNum(), 1));
-  std::string_view text = sources_.lineText(file_, line);
   std::string open = std::string("<") + e->Name();
-  std::size_t col = text.find(open);
-  if (col == std::string_view::npos) return {{file_, line, 1}, 1};
-  return {{file_, line, static_cast<std::uint32_t>(col + 1)}, static_cast<std::uint32_t>(open.size())};
+  // Remembered: on a line of thousands of elements, searching it again for each would cost n^2.
+  auto [known, added] = columns_.try_emplace({line, open}, 0);
+  if (added) {
+    std::string_view text = sources_.lineText(file_, line);
+    const std::size_t col = text.find(open);
+    known->second = col == std::string_view::npos ? 0 : static_cast<std::uint32_t>(col + 1);
+  }
+  if (known->second == 0) return {{file_, line, 1}, 1};
+  return {{file_, line, known->second}, static_cast<std::uint32_t>(open.size())};
 }
 
 SourceRange Reader::attributeAt(const tinyxml2::XMLElement* e, std::string_view attribute, bool atValue) const {

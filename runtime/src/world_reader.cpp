@@ -39,8 +39,8 @@ std::string pointerKey(const std::string& key) {
 
 class Reader {
  public:
-  Reader(std::string_view text, const std::string& path, std::vector<WorldError>& errors)
-      : text_(text), path_(path), errors_(errors), positions_(text) {}
+  Reader(std::string_view text, const std::vector<std::size_t>& lineStarts, const std::string& path, std::vector<WorldError>& errors)
+      : text_(text), lineStarts_(lineStarts), path_(path), errors_(errors), positions_(text) {}
 
   void read(const json& root) {
     if (!root.is_object()) return error("", "a world file is a JSON object");
@@ -97,18 +97,19 @@ class Reader {
 
  private:
   std::string_view text_;
+  const std::vector<std::size_t>& lineStarts_;
   const std::string& path_;
   std::vector<WorldError>& errors_;
   JsonPositions positions_;
   World world_;
 
   TextPosition position(const std::string& pointer) const {
-    const WorldError e = errorAt(text_, path_, positions_.offsetOf(pointer), "");
+    const WorldError e = errorAt(text_, lineStarts_, path_, positions_.offsetOf(pointer), "");
     return {e.line, e.column};
   }
 
   void error(const std::string& pointer, std::string message) {
-    errors_.push_back(errorAt(text_, path_, positions_.offsetOf(pointer), std::move(message)));
+    errors_.push_back(errorAt(text_, lineStarts_, path_, positions_.offsetOf(pointer), std::move(message)));
   }
 
   // Where the key of the member whose value starts at `pointer` is written: back from the value over
@@ -129,7 +130,7 @@ class Reader {
         }
       }
     }
-    errors_.push_back(errorAt(text_, path_, i, std::move(message)));
+    errors_.push_back(errorAt(text_, lineStarts_, path_, i, std::move(message)));
   }
 
   // Every member of `o` must be one of `allowed` (or a comment, "_...").
@@ -479,6 +480,7 @@ std::optional<World> parseWorld(std::string_view text, const std::string& path, 
     errors.push_back(errorAt(text, path, nul, "not valid JSON: a NUL byte"));
     return std::nullopt;
   }
+  const std::vector<std::size_t> starts = detail::lineStarts(text);
   PreScan scan = preScan(text);
   if (scan.tooDeep) {
     errors.push_back(errorAt(text, path, scan.problems.front().first, scan.problems.front().second));
@@ -499,9 +501,9 @@ std::optional<World> parseWorld(std::string_view text, const std::string& path, 
     if (scan.problems.empty()) scan.problems.push_back({0, "not valid JSON"});
   }
   // Members given twice do not stop the reader: the other mistakes of the file are worth reporting too.
-  for (const auto& [offset, message] : scan.problems) errors.push_back(errorAt(text, path, offset, message));
+  for (const auto& [offset, message] : scan.problems) errors.push_back(errorAt(text, starts, path, offset, message));
   if (!parsed) return std::nullopt;
-  Reader reader(text, path, errors);
+  Reader reader(text, starts, path, errors);
   try {
     reader.read(root);
   } catch (const json::exception& e) {  // a check above missed a type: report it rather than crash

@@ -13,24 +13,45 @@ namespace semo::runtime {
 
 namespace detail {
 
-// Line and column (1-based, columns count bytes as everywhere in semo) of a byte offset, with the line's text.
-WorldError errorAt(std::string_view text, const std::string& path, std::size_t offset, std::string message) {
-  WorldError e{path, 1, 1, std::move(message), ""};
-  std::size_t lineStart = 0;
-  for (std::size_t i = 0; i < offset && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++e.line;
-      e.column = 1;
-      lineStart = i + 1;
-    } else {
-      ++e.column;
-    }
+std::vector<std::size_t> lineStarts(std::string_view text) {
+  std::vector<std::size_t> starts{0};
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '\n') starts.push_back(i + 1);
   }
-  std::size_t lineEnd = text.find('\n', std::min(lineStart, text.size()));
-  if (lineEnd == std::string_view::npos) lineEnd = text.size();
-  e.lineText = std::string(text.substr(std::min(lineStart, text.size()), lineEnd - std::min(lineStart, text.size())));
-  if (!e.lineText.empty() && e.lineText.back() == '\r') e.lineText.pop_back();
+  return starts;
+}
+
+// Line and column (1-based, columns count bytes as everywhere in semo) of a byte offset, with the
+// line's text: of a long line only a window around the column, so that each of many errors on a
+// line of megabytes costs what its message does, not what the line does.
+WorldError errorAt(std::string_view text, const std::vector<std::size_t>& starts, const std::string& path, std::size_t offset,
+                   std::string message) {
+  constexpr std::size_t kShownLine = 200, kShownBefore = 80;
+  offset = std::min(offset, text.size());
+  const auto line = static_cast<std::size_t>(std::upper_bound(starts.begin(), starts.end(), offset) - starts.begin());
+  const std::size_t lineStart = starts[line - 1];
+  std::size_t lineEnd = line < starts.size() ? starts[line] - 1 : text.size();
+  if (lineEnd > lineStart && text[lineEnd - 1] == '\r') --lineEnd;
+  WorldError e{path, line, offset - lineStart + 1, std::move(message), ""};
+  const std::string_view whole = text.substr(lineStart, lineEnd - lineStart);
+  if (whole.size() <= kShownLine) {
+    e.lineText = whole;
+    return e;
+  }
+  const std::size_t column0 = e.column - 1;
+  std::size_t begin = column0 > kShownBefore ? std::min(column0, whole.size()) - kShownBefore : 0;
+  std::size_t end = std::min(whole.size(), begin + kShownLine);
+  // Cut between characters, not inside a UTF-8 sequence.
+  while (begin > 0 && (static_cast<unsigned char>(whole[begin]) & 0xC0) == 0x80) --begin;
+  while (end < whole.size() && end > begin && (static_cast<unsigned char>(whole[end]) & 0xC0) == 0x80) --end;
+  const std::string lead = begin > 0 ? "..." : "";
+  e.lineText = lead + std::string(whole.substr(begin, end - begin)) + (end < whole.size() ? "..." : "");
+  e.caret = lead.size() + e.column - begin;
   return e;
+}
+
+WorldError errorAt(std::string_view text, const std::string& path, std::size_t offset, std::string message) {
+  return errorAt(text, lineStarts(text), path, offset, std::move(message));
 }
 
 // What nlohmann cannot tell with a position: nesting beyond kMaxWorldDepth (found before parsing, so a
@@ -88,7 +109,8 @@ std::string formatWorldError(const WorldError& e) {
   if (e.line == 0 || e.lineText.empty()) return out;
   out += e.lineText + "\n";
   // Keep tabs so that the caret lines up under the same column as the line above.
-  for (std::size_t i = 1; i < e.column && i - 1 < e.lineText.size(); ++i) out += e.lineText[i - 1] == '\t' ? '\t' : ' ';
+  const std::size_t caret = e.caret != 0 ? e.caret : e.column;
+  for (std::size_t i = 1; i < caret && i - 1 < e.lineText.size(); ++i) out += e.lineText[i - 1] == '\t' ? '\t' : ' ';
   return out + "^\n";
 }
 

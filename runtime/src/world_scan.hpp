@@ -16,7 +16,13 @@ inline constexpr std::size_t kMaxWorldDepth = 64;
 // Members whose key starts with '_' are comments.
 inline bool isComment(const std::string& key) { return !key.empty() && key.front() == '_'; }
 
-// An error at a byte offset of the text, with its line, column and the line's text.
+// Where each line of the text starts (for errorAt: the line of an offset in log time).
+std::vector<std::size_t> lineStarts(std::string_view text);
+// An error at a byte offset of the text, with its line, column and the line's text (a window of it
+// around the column when the line is long).
+WorldError errorAt(std::string_view text, const std::vector<std::size_t>& lineStarts, const std::string& path, std::size_t offset,
+                   std::string message);
+// The same, the lines found anew: for one error.
 WorldError errorAt(std::string_view text, const std::string& path, std::size_t offset, std::string message);
 
 struct PreScan {

@@ -227,13 +227,17 @@ std::string writeSdf3(const Graph& g) {
   // Ports are named after the channel and its end: unique per actor, whatever the channels' names.
   std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<sdf3 type=\"sdf\" version=\"1.0\">\n";
   out += "  <applicationGraph name=\"" + escaped(g.name) + "\">\n    <sdf name=\"" + escaped(g.name) + "\" type=\"" + escaped(g.name) + "\">\n";
+  // Each actor's ports in the order of their channels, found in one pass over the channels (not one
+  // per actor: a graph of n actors and n channels would cost n^2).
+  std::vector<std::string> ports(g.actors.size());
+  for (std::size_t c = 0; c < g.channels.size(); ++c) {
+    const Channel& ch = g.channels[c];
+    if (ch.source < ports.size()) ports[ch.source] += "        <port name=\"out" + std::to_string(c) + "\" type=\"out\" rate=\"" + std::to_string(ch.production) + "\"/>\n";
+    if (ch.target < ports.size()) ports[ch.target] += "        <port name=\"in" + std::to_string(c) + "\" type=\"in\" rate=\"" + std::to_string(ch.consumption) + "\"/>\n";
+  }
   for (ActorId a = 0; a < g.actors.size(); ++a) {
     out += "      <actor name=\"" + escaped(g.actors[a].name) + "\" type=\"" + escaped(g.actors[a].name) + "\">\n";
-    for (std::size_t c = 0; c < g.channels.size(); ++c) {
-      const Channel& ch = g.channels[c];
-      if (ch.source == a) out += "        <port name=\"out" + std::to_string(c) + "\" type=\"out\" rate=\"" + std::to_string(ch.production) + "\"/>\n";
-      if (ch.target == a) out += "        <port name=\"in" + std::to_string(c) + "\" type=\"in\" rate=\"" + std::to_string(ch.consumption) + "\"/>\n";
-    }
+    out += ports[a];
     out += "      </actor>\n";
   }
   for (std::size_t c = 0; c < g.channels.size(); ++c) {

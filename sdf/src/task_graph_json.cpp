@@ -33,7 +33,7 @@ struct Invalid {};
 class Reader {
  public:
   Reader(const SourceManager& sources, FileId file, DiagnosticEngine& diags)
-      : text_(sources.text(file)), file_(file), diags_(diags), positions_(text_) {}
+      : sources_(sources), text_(sources.text(file)), file_(file), diags_(diags), positions_(text_) {}
 
   std::optional<TaskGraph> read(const json& root) {
     try {
@@ -45,6 +45,7 @@ class Reader {
   }
 
  private:
+  const SourceManager& sources_;
   const std::string& text_;
   FileId file_;
   DiagnosticEngine& diags_;
@@ -52,7 +53,7 @@ class Reader {
   TaskGraph tg_;
   std::map<std::string, std::uint32_t> taskIndex_, channelIndex_;
 
-  SourceRange at(const std::string& pointer) const { return jsonRangeAt(file_, text_, positions_.offsetOf(pointer)); }
+  SourceRange at(const std::string& pointer) const { return {sources_.locationAt(file_, positions_.offsetOf(pointer)), 1}; }
 
   [[noreturn]] void fail(const std::string& pointer, const std::string& message) {
     diags_.error(at(pointer), message);
@@ -291,7 +292,7 @@ std::string taskGraphToJson(const TaskGraph& tg) {
     scenarios.push_back({{"name", s.name}, {"mode", s.mode}, {"services", s.services}, {"tasks", active}, {"channels", chans}});
   }
   root["scenarios"] = scenarios;
-  return root.dump(2) + "\n";
+  return root.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 std::optional<TaskGraph> readTaskGraphJson(const SourceManager& sources, FileId file, DiagnosticEngine& diags) {

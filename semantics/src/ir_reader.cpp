@@ -105,6 +105,13 @@ class Reader {
           continue;
         }
         ++pos;
+        // A string is written out again (traces, JSON): it must be text.
+        if (const std::size_t bad = firstInvalidUtf8(text_.substr(b + 1, pos - b - 2)); bad != std::string_view::npos) {
+          static const char* digits = "0123456789abcdef";
+          const auto byte = static_cast<unsigned char>(text_[b + 1 + bad]);
+          diags_.error(range(b + 1 + bad, b + 2 + bad), std::string("a string must be UTF-8 text: byte 0x") + digits[byte >> 4] + digits[byte & 15] +
+                                                            " is not");
+        }
         tokens_.push_back({T::String, text_.substr(b + 1, pos - b - 2), range(b, pos)});
       } else {
         static const char* twoChar[] = {"->", "==", "!=", "<=", ">=", "&&", "||", "=>", ".."};

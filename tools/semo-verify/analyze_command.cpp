@@ -91,7 +91,7 @@ int analyzeBySampling(const AnalyzeOptions& options, const ir::Model& model, con
     }
     std::cout << "\n";
   }
-  if (options.json) std::cout << out.dump(2) << "\n";
+  if (options.json) std::cout << out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   if (options.svg && !writeAtomically(*options.svg, probabilityChartSvg(series, "P(reached within t steps), estimated - " + input,
                                                                        "t (steps of the model)"))) {
     std::cerr << "semo-verify: error: cannot write '" << *options.svg << "'\n";
@@ -197,7 +197,7 @@ int runAnalyze(const AnalyzeOptions& options) {
                                    {"expected", resultJson(a.expected)},
                                    {"within", {{"min", a.within[0]}, {"max", a.within[1]}}}});
     }
-    std::cout << out.dump(2) << "\n";
+    std::cout << out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   } else {
     std::cout << "model:       " << input << " (" << model.variables.size() << " variables, " << model.rules.size() << " rules)\n";
     std::cout << "markov:      " << chain.size() << " states, " << chain.actions() << (chain.actions() == 1 ? " action: " : " actions: ") << kind << "\n";

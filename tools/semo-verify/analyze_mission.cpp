@@ -207,7 +207,7 @@ int analyzeMission(const AnalyzeOptions& given, const BuiltModel& built) {
                                                                {"withinMillis", h.takeoverAfter * static_cast<std::size_t>(h.heartbeatMillis)},
                                                                {"probability", 1.0}}}});
     }
-    std::cout << out.dump(2) << "\n";
+    std::cout << out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   } else {
     std::cout << "model:       " << options.model.input << "\n";
     std::cout << fmt::format("assumes:     each copy of a message lost with probability {:g} ({}), independently; no crash\n",

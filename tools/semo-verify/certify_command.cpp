@@ -39,7 +39,7 @@ int runCertify(const CertifyOptions& options) {
                                 {"findings", findings},
                                 {"notCovered", report.notCovered},
                                 {"exitCode", report.exitCode}}
-                     .dump(2)
+                     .dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
               << "\n";
     return report.exitCode;
   }

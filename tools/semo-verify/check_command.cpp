@@ -215,7 +215,7 @@ int runCheck(const CheckOptions& options) {
   if (!globs.empty()) json["selection"] = {{"globs", globs}, {"properties", selected}};
   // --trace-out keeps what --json prints (verdicts and counterexamples, specs/trace.md) in a file,
   // for `show` and `replay`, whatever the text on the terminal.
-  for (const auto& [path, text] : {std::pair{options.traceOut, options.traceOut ? json.dump(2) + "\n" : std::string()},
+  for (const auto& [path, text] : {std::pair{options.traceOut, options.traceOut ? json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n" : std::string()},
                                    std::pair{options.junit, options.junit ? junitXml(*report, *built->model, options.model.input) : std::string()},
                                    std::pair{options.sarif, options.sarif ? checkSarif(*report, *built->model) : std::string()}}) {
     if (path && !writeAtomically(*path, text)) {
@@ -237,7 +237,7 @@ int runCheck(const CheckOptions& options) {
     }
   }
   if (options.json) {
-    std::cout << json.dump(2) << "\n";
+    std::cout << json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   } else {
     // The selection overrides the verify block's list: said before the verdicts.
     if (!globs.empty()) {
@@ -288,7 +288,9 @@ int runExport(const ExportOptions& options) {
   std::vector<Output> outputs;
   if (options.output) outputs.push_back({"--output", *options.output});
   if (options.properties) outputs.push_back({"--props", *options.properties});
-  if (!outputsSpareInputs(outputs, {in.input, in.strategy.value_or(""), in.robotsDir.value_or("")})) return kBadInput;
+  std::vector<std::string> inputs = filesRead(built->sources);  // the URDF files the strategy names too
+  inputs.insert(inputs.end(), {in.input, in.strategy.value_or(""), in.robotsDir.value_or("")});
+  if (!outputsSpareInputs(outputs, inputs)) return kBadInput;
   if (!options.output) std::cout << text;
   for (const auto& [path, content] : {std::pair{options.output, &text}, std::pair{options.properties, &properties}}) {
     if (path && !writeAtomically(*path, *content)) {

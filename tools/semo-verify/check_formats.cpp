@@ -122,7 +122,7 @@ std::string checkSarif(const checker::Report& r, const ir::Model& model) {
     if (!where.empty()) result["locations"] = where;
     results.push_back(std::move(result));
   }
-  return sarifLog(std::move(results), std::move(rules)).dump(2) + "\n";
+  return sarifLog(std::move(results), std::move(rules)).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 std::string diagnosticsSarif(const SourceManager& sources, const DiagnosticEngine& diags) {
@@ -139,7 +139,7 @@ std::string diagnosticsSarif(const SourceManager& sources, const DiagnosticEngin
     results.push_back(std::move(result));
   }
   json rules = json::array({{{"id", "error"}}, {{"id", "warning"}}, {{"id", "note"}}});
-  return sarifLog(std::move(results), std::move(rules)).dump(2) + "\n";
+  return sarifLog(std::move(results), std::move(rules)).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace semo::cli

@@ -1,6 +1,10 @@
 #include "commands.hpp"
 #include "semo/semantics/ir_text.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -153,7 +157,7 @@ int runLint(const LintOptions& options) {
       out["summary"] = {{"teams", model->teams.size()}, {"robots", model->robots.size()}, {"services", model->services.size()},
                         {"modes", model->modes.size()}, {"groupBlocks", model->groupBlocks.size()}, {"robotTypes", model->catalog.types().size()}};
     }
-    std::cout << out.dump(2) << "\n";
+    std::cout << out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
     return failed ? kBadInput : kOk;
   }
   diags.print(std::cerr);
@@ -193,19 +197,31 @@ std::string wrapText(const std::string& line, std::size_t indent, std::size_t wi
 }
 
 bool writeAtomically(const std::string& path, const std::string& text) {
-  std::string temporary = path + ".partial";
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    out << text;
-    if (!out) {
-      std::filesystem::remove(temporary);
-      return false;
-    }
+  // The temporary file is new (O_EXCL): a name already taken, perhaps by an input of the run
+  // ("out.partial" beside "out"), is never opened, let alone renamed over the output.
+  std::string temporary;
+  int fd = -1;
+  for (int attempt = 0; fd < 0 && attempt < 100; ++attempt) {
+    temporary = path + ".partial-" + std::to_string(getpid()) + "-" + std::to_string(attempt);
+    fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd < 0 && errno != EEXIST) return false;
   }
+  if (fd < 0) return false;
+  bool written = true;
+  for (std::size_t done = 0; written && done < text.size();) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    written = n > 0;
+    if (written) done += static_cast<std::size_t>(n);
+  }
+  written = ::close(fd) == 0 && written;
   std::error_code ec;
-  std::filesystem::rename(temporary, path, ec);
-  if (ec) std::filesystem::remove(temporary);
-  return !ec;
+  if (written) std::filesystem::rename(temporary, path, ec);
+  if (!written || ec) {
+    std::filesystem::remove(temporary, ec);
+    return false;
+  }
+  return true;
 }
 
 std::vector<std::string> filesRead(const SourceManager& sources) {
@@ -228,6 +244,17 @@ bool outputsSpareInputs(const std::vector<Output>& outputs, const std::vector<st
   }
   for (const Output& out : outputs) {
     std::error_code ec;
+    // Where it cannot be written, nothing is: checked for every output before any is written.
+    const fs::path folder = fs::path(out.path).parent_path().empty() ? fs::path(".") : fs::path(out.path).parent_path();
+    if (fs::is_directory(out.path, ec)) {
+      std::cerr << "semo-verify: error: " << out.flag << " '" << out.path << "' is a folder; give a file name\n";
+      return false;
+    }
+    if (!out.inNewFolder && !fs::is_directory(folder, ec)) {
+      std::cerr << "semo-verify: error: " << out.flag << " '" << out.path << "': there is no folder '" << folder.string()
+                << "' to write it in\n";
+      return false;
+    }
     if (!fs::exists(out.path, ec)) continue;  // a file yet to be made replaces nothing
     for (const std::string& in : files) {
       std::error_code same;

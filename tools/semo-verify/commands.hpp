@@ -221,10 +221,12 @@ std::string wrapText(const std::string& line, std::size_t indent, std::size_t wi
 
 // No output replaces an input. Each output (its option, for the message, and its path) against each
 // input file, and each file of an input folder (--robots), as std::filesystem::equivalent sees them
-// (another name of the same file counts). Prints the error and returns false on the first clash;
-// commands call it before writing anything.
+// (another name of the same file counts); and each output where it can be written (a file name, in
+// a folder that exists). Prints the error and returns false on the first problem; commands call it
+// before writing anything, so that a run that cannot write one of its outputs writes none.
 struct Output {
   std::string flag, path;
+  bool inNewFolder = false;  // its folder may be missing: the run makes it (sdf --out)
 };
 bool outputsSpareInputs(const std::vector<Output>& outputs, const std::vector<std::string>& inputs);
 // Every file a run read through its SourceManager (mission, strategy, URDFs, ...), to add to `inputs`.

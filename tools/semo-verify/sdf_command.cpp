@@ -48,8 +48,9 @@ int runSdf(const SdfOptions& options) {
   if (options.dotOut) outputs.push_back({"--dot", *options.dotOut});
   if (options.sdf3Out) outputs.push_back({"--write-sdf3", *options.sdf3Out});
   if (!outputsSpareInputs(outputs, {options.sdf3})) return kBadInput;
-  for (const auto& [path, text] : {std::pair{options.dotOut, sdf::toGraphviz(*g)}, std::pair{options.sdf3Out, sdf::writeSdf3(*g)}}) {
-    if (path && !writeAtomically(*path, text)) {
+  // Each rendered only when asked for.
+  for (const auto& [path, render] : {std::pair{options.dotOut, &sdf::toGraphviz}, std::pair{options.sdf3Out, &sdf::writeSdf3}}) {
+    if (path && !writeAtomically(*path, render(*g))) {
       std::cerr << "semo-verify: error: cannot write '" << *path << "'\n";
       return kBadInput;
     }
@@ -98,7 +99,7 @@ int runSdf(const SdfOptions& options) {
         if (!front->error.empty()) root["paretoFront"]["error"] = front->error;
       }
     }
-    std::cout << root.dump(2) << "\n";
+    std::cout << root.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
     return code;
   }
   std::cout << "graph:       " << options.sdf3 << " (" << g->name << ": " << g->actors.size() << " actors, " << g->channels.size()

@@ -199,8 +199,8 @@ int runTaskGraphs(const SdfOptions& options) {
     std::vector<Output> outputs;
     for (const sdf::TaskGraph& g : graphs) {
       const std::string base = (std::filesystem::path(*options.outDir) / g.robot).string();
-      outputs.push_back({"--out", base + ".json"});
-      outputs.push_back({"--out", base + ".dot"});
+      outputs.push_back({"--out", base + ".json", true});
+      outputs.push_back({"--out", base + ".dot", true});
     }
     std::vector<std::string> inputs = filesRead(sources);
     if (options.robotsDir) inputs.push_back(*options.robotsDir);
@@ -275,7 +275,7 @@ int runTaskGraphs(const SdfOptions& options) {
                       {"robots", robots},
                       {"assumptions", report.taskGraphAssumptions},
                       {"exitCode", report.exitCode}}
-                     .dump(2)
+                     .dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
               << "\n";
   } else {
     std::cout << wrapText("assumptions: " + report.taskGraphAssumptions, 13);

@@ -25,6 +25,10 @@ struct SourceRange {
   std::uint32_t length = 1;
 };
 
+// The offset of the first byte of `text` that is not part of well-formed UTF-8 (RFC 3629: no
+// overlong form, no surrogate, nothing past U+10FFFF), or std::string_view::npos.
+std::size_t firstInvalidUtf8(std::string_view text);
+
 class SourceManager {
  public:
   // Registers text read from `path`; the manager owns a copy.
@@ -37,6 +41,9 @@ class SourceManager {
   // The text of a 1-based line without its line terminator; empty if out of range.
   [[nodiscard]] std::string_view lineText(FileId id, std::uint32_t line) const;
   [[nodiscard]] std::uint32_t lineCount(FileId id) const;
+  // The line and column of a byte offset of the file's text (an offset past its end: the end), in
+  // log time: readers that know offsets (JSON) place each element without scanning from the start.
+  [[nodiscard]] SourceLocation locationAt(FileId id, std::size_t offset) const;
   [[nodiscard]] std::size_t fileCount() const { return files_.size(); }
 
  private:

@@ -6,9 +6,11 @@
 
 #include <cstdint>
 #include <initializer_list>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "semo/frontend/diagnostics.hpp"
@@ -51,6 +53,7 @@ class Reader {
   const SourceManager& sources_;
   FileId file_;
   DiagnosticEngine& diags_;
+  mutable std::map<std::pair<std::uint32_t, std::string>, std::uint32_t> columns_;  // at(): (line, "<name") -> column, 0 if not found
 };
 
 // Splits a whitespace- or comma-separated list.

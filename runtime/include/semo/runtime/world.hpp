@@ -119,7 +119,8 @@ struct WorldError {
   std::string file;
   std::size_t line = 0, column = 0;  // 1-based; 0 when the file could not be read at all
   std::string message;
-  std::string lineText;  // the line, for the caret
+  std::string lineText;  // the line, for the caret (of a long line, a window of it around the column)
+  std::size_t caret = 0;  // the caret's column in lineText when it is a window (1-based); 0: `column`
 };
 
 // "file:line:col: error: message", then the line and a caret under the column.
