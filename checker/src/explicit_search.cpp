@@ -38,8 +38,10 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
   }
   std::size_t open = result.properties.size();  // properties not yet violated
 
+  if (limits.onPhase && limits.symmetry) limits.onPhase("symmetry: which of the " + std::to_string(model.robots.size()) + " robots are interchangeable");
   Symmetry symmetry = limits.symmetry ? Symmetry::find(model) : Symmetry();
   result.symmetry = symmetry.describe(model);
+  if (limits.onPhase) limits.onPhase("safety search");
   const Symmetry* sym = symmetry.empty() ? nullptr : &symmetry;
   StateStore store(layout.words());
   result.bytesPerState = store.bytesPerState();

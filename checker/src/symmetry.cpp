@@ -1,9 +1,13 @@
 #include "semo/checker/symmetry.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 #include <unordered_map>
+
+#include <fmt/format.h>
 
 namespace semo::checker {
 
@@ -73,105 +77,221 @@ std::string canon(const Expr& e, const VarMap& map) {
   return out + ")";
 }
 
-std::string canon(const ir::Ltl& f, const VarMap& map) {
-  if (f.kind == ir::Ltl::Kind::Atom) return canon(f.atom, map);
-  std::vector<std::string> parts;
-  for (const ir::Ltl& a : f.args) parts.push_back(canon(a, map));
-  if (f.kind == ir::Ltl::Kind::And || f.kind == ir::Ltl::Kind::Or) std::sort(parts.begin(), parts.end());
-  std::string out = std::string("[") + ir::ltlKeyword(f.kind);
-  for (const std::string& p : parts) out += " " + p;
-  return out + "]";
-}
+// Canonical forms as numbers: an expression's form (operands of commutative operators in order,
+// chains of an associative one flattened) numbered once, from its operands' numbers. Comparing a
+// formula over a whole team under each of a hundred swaps compares numbers, not texts of
+// megabytes. Under a swap a form never numbered (`add` false) is kUnknown: an expression whose
+// form is no original one's cannot be equal to the original, and every part of an equal one is
+// a part of the original, so looking up alone is exact.
+class CanonTable {
+ public:
+  static constexpr std::uint32_t kUnknown = UINT32_MAX;
 
-std::string canon(const ir::Rule& r, const VarMap& map) {
+  // The swap the next lookups are under: the variables it moves. A part of the model that reads
+  // none of them keeps the number it has as it is (remembered per node, with the range of the
+  // variables it reads: a robot's variables are consecutive), so a guard over the whole team costs
+  // a swap its operands, not its whole tree.
+  void moving(const VarMap& map) {
+    moved_.clear();
+    for (ir::VarId v = 0; v < map.size(); ++v) {
+      if (map[v] != v) moved_.push_back(v);
+    }
+  }
+
+  // `add`: the model as it is (the identity), numbering new forms; else under the swap `moving`
+  // was last told, looking up only.
+  std::uint32_t of(const Expr& e, const VarMap& map, bool add) {
+    if (!add) {
+      auto it = memo_.find(&e);
+      if (it != memo_.end() && !movesWithin(it->second.low, it->second.high)) return it->second.id;
+    }
+    std::vector<std::int64_t> key;
+    Memo memo;
+    switch (e.op) {
+      case Op::Const: return number({0, e.value}, add);
+      case Op::Var:
+        memo.low = memo.high = static_cast<ir::VarId>(e.value);
+        key = {1, map[static_cast<std::size_t>(e.value)]};
+        break;
+      default: {
+        key.push_back(2 + static_cast<std::int64_t>(e.op));
+        std::vector<const Expr*> operands;
+        if (associative(e.op)) {
+          flatten(e, e.op, operands);
+        } else {
+          for (const Expr& a : e.args) operands.push_back(&a);
+        }
+        for (const Expr* a : operands) {
+          const std::uint32_t id = of(*a, map, add);
+          if (id == kUnknown) return kUnknown;
+          key.push_back(id);
+          if (add) {
+            auto it = memo_.find(a);
+            if (it != memo_.end()) memo.low = std::min(memo.low, it->second.low), memo.high = std::max(memo.high, it->second.high);
+          }
+        }
+        if (commutative(e.op)) std::sort(key.begin() + 1, key.end());
+      }
+    }
+    memo.id = number(std::move(key), add);
+    if (add) memo_.emplace(&e, memo);
+    return memo.id;
+  }
+
+  std::uint32_t of(const ir::Ltl& f, const VarMap& map, bool add) {
+    if (f.kind == ir::Ltl::Kind::Atom) {
+      const std::uint32_t atom = of(f.atom, map, add);
+      return atom == kUnknown ? kUnknown : number({-1, atom}, add);
+    }
+    std::vector<std::int64_t> key{-2 - static_cast<std::int64_t>(f.kind)};
+    for (const ir::Ltl& a : f.args) {
+      const std::uint32_t id = of(a, map, add);
+      if (id == kUnknown) return kUnknown;
+      key.push_back(id);
+    }
+    if (f.kind == ir::Ltl::Kind::And || f.kind == ir::Ltl::Kind::Or) std::sort(key.begin() + 1, key.end());
+    return number(std::move(key), add);
+  }
+
+ private:
+  struct KeyHash {
+    std::size_t operator()(const std::vector<std::int64_t>& k) const {
+      std::uint64_t h = 1469598103934665603ull;
+      for (std::int64_t x : k) h = (h ^ static_cast<std::uint64_t>(x)) * 1099511628211ull;
+      return static_cast<std::size_t>(h ^ (h >> 29));
+    }
+  };
+
+  std::uint32_t number(std::vector<std::int64_t>&& key, bool add) {
+    if (!add) {
+      auto it = ids_.find(key);
+      return it == ids_.end() ? kUnknown : it->second;
+    }
+    return ids_.emplace(std::move(key), static_cast<std::uint32_t>(ids_.size())).first->second;
+  }
+
+  struct Memo {
+    std::uint32_t id = kUnknown;
+    ir::VarId low = std::numeric_limits<ir::VarId>::max(), high = 0;  // the variables read: none when low > high
+  };
+
+  bool movesWithin(ir::VarId low, ir::VarId high) const {
+    if (low > high) return false;
+    auto it = std::lower_bound(moved_.begin(), moved_.end(), low);
+    return it != moved_.end() && *it <= high;
+  }
+
+  std::unordered_map<std::vector<std::int64_t>, std::uint32_t, KeyHash> ids_;
+  std::unordered_map<const Expr*, Memo> memo_;  // every node numbered as it is
+  std::vector<ir::VarId> moved_;
+};
+
+// A rule's text: its kind, fairness, guard, where it senses and its outcomes, expressions by their
+// numbers; nullopt when one is unknown (under a swap: then the rule is no rule of the model).
+std::optional<std::string> ruleText(const ir::Rule& r, const VarMap& map, CanonTable& forms, bool add) {
+  const std::uint32_t guard = forms.of(r.guard, map, add);
+  if (guard == CanonTable::kUnknown) return std::nullopt;
   std::vector<std::string> branches;
   for (const ir::Branch& b : r.branches) {
     std::vector<std::string> updates;
-    for (const ir::Assignment& a : b.assignments) updates.push_back("v" + std::to_string(map[a.var]) + ":=" + canon(a.value, map));
+    for (const ir::Assignment& a : b.assignments) {
+      const std::uint32_t value = forms.of(a.value, map, add);
+      if (value == CanonTable::kUnknown) return std::nullopt;
+      updates.push_back("v" + std::to_string(map[a.var]) + ":=" + std::to_string(value));
+    }
     std::sort(updates.begin(), updates.end());
     std::string text = std::to_string(b.probability);
     for (const std::string& u : updates) text += ";" + u;
     branches.push_back(std::move(text));
   }
   std::sort(branches.begin(), branches.end());
-  std::string out = std::to_string(static_cast<int>(r.kind)) + (r.weaklyFair ? "w" : "") + (r.stronglyFair ? "s" : "") + "|" +
-                    canon(r.guard, map);
+  std::string out = std::to_string(static_cast<int>(r.kind)) + (r.weaklyFair ? "w" : "") + (r.stronglyFair ? "s" : "") + "|" + std::to_string(guard);
   // Where it senses, without the robot (a place in the program, the same for every robot of a type).
   for (const ir::SensedOutcome& s : r.sensed) out += "|?" + s.point.substr(s.point.find('.') + 1) + (s.holds ? "+" : "-");
   for (const std::string& b : branches) out += "|" + b;
   return out;
 }
 
-// Every rule's text, with the texts of the rules of its fairness group (sorted): a swap must map
-// the groups onto groups, as fairness is per group.
-std::vector<std::string> ruleTexts(const ir::Model& m, const VarMap& map) {
-  std::vector<std::string> own;
-  for (const ir::Rule& r : m.rules) own.push_back(canon(r, map));
-  std::unordered_map<std::string, std::vector<std::string>> groups;
-  for (std::size_t r = 0; r < m.rules.size(); ++r) {
-    if (!m.rules[r].fairGroup.empty()) groups[m.rules[r].fairGroup].push_back(own[r]);
+// The variables a rule reads or writes: a swap that moves none of them leaves the rule's text alone.
+std::vector<ir::VarId> variablesOf(const ir::Rule& r) {
+  std::vector<ir::VarId> out;
+  std::vector<const Expr*> work{&r.guard};
+  for (const ir::Branch& b : r.branches) {
+    for (const ir::Assignment& a : b.assignments) {
+      out.push_back(a.var);
+      work.push_back(&a.value);
+    }
   }
-  std::unordered_map<std::string, std::string> signature;
-  for (auto& [name, texts] : groups) {
-    std::sort(texts.begin(), texts.end());
-    std::string sig = "{";
-    for (const std::string& t : texts) sig += t + ";";
-    signature[name] = sig + "}";
+  while (!work.empty()) {  // an explicit stack: guards may be long
+    const Expr* e = work.back();
+    work.pop_back();
+    if (e->op == Op::Var) out.push_back(static_cast<ir::VarId>(e->value));
+    for (const Expr& a : e->args) work.push_back(&a);
   }
-  std::vector<std::string> out;
-  for (std::size_t r = 0; r < m.rules.size(); ++r) {
-    out.push_back(m.rules[r].fairGroup.empty() ? own[r] : own[r] + "|g" + signature[m.rules[r].fairGroup]);
-  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
 
-// Everything the search and the verdicts depend on, as texts; per item, so that each invariant
-// and property must map to itself.
-struct ModelText {
-  std::vector<std::string> rules;  // sorted: the rule set as a multiset
-  std::vector<std::string> invariants, properties;
-  std::string validEnd;
-};
+constexpr std::uint32_t kNoGroup = UINT32_MAX;
 
-ModelText text(const ir::Model& m, const VarMap& map) {
-  ModelText t;
-  t.rules = ruleTexts(m, map);
-  std::sort(t.rules.begin(), t.rules.end());
-  for (const ir::Invariant& inv : m.invariants) t.invariants.push_back(canon(inv.holds, map));
-  for (const ir::Property& p : m.properties) t.properties.push_back(canon(p.formula, map));
-  if (m.validEnd) t.validEnd = canon(*m.validEnd, map);
-  return t;
-}
-
-bool operator==(const ModelText& a, const ModelText& b) {
-  return a.rules == b.rules && a.invariants == b.invariants && a.properties == b.properties && a.validEnd == b.validEnd;
-}
-
+// Whether swapping two robots maps the model onto itself, and what it does to the rules.
+//
+// The model is the same under a swap when the multiset of its rules is (each rule's text with its
+// variables renamed, and the texts of its fairness group, as fairness is per group: a swap must map
+// groups onto groups), and each invariant, property and the valid end map to themselves. Texts are
+// numbered once (a rule's own text, a group's sorted numbers), and a swap only recomputes the texts
+// of the rules that read or write a robot it moves, and the numbers of their groups: the rest of
+// the model is untouched. Each check then costs the swapped robots' share of the model, not the
+// whole model (a team of 100 robots took 22 s, each swap comparing every rule's text).
 class Finder {
  public:
   explicit Finder(const ir::Model& m) : m_(m) {
     for (ir::VarId v = 0; v < m.variables.size(); ++v) byName_[m.variables[v].name] = v;
     for (std::size_t r = 0; r < m.robots.size(); ++r) robotIndex_[m.robots[r]] = static_cast<std::int32_t>(r);
-    VarMap identity(m.variables.size());
-    for (ir::VarId v = 0; v < identity.size(); ++v) identity[v] = v;
-    original_ = text(m, identity);
-    std::vector<std::string> texts = ruleTexts(m, identity);
-    for (std::uint32_t r = 0; r < m.rules.size(); ++r) ruleIndex_[texts[r]].push_back(r);
+    identity_.resize(m.variables.size());
+    for (ir::VarId v = 0; v < identity_.size(); ++v) identity_[v] = v;
+    const std::size_t rules = m.rules.size();
+    own_.resize(rules);
+    group_.assign(rules, kNoGroup);
+    users_.resize(m.variables.size());
+    std::unordered_map<std::string, std::uint32_t> groupIndex;
+    for (std::uint32_t r = 0; r < rules; ++r) {
+      own_[r] = ownIds_.emplace(*ruleText(m.rules[r], identity_, forms_, true), static_cast<std::uint32_t>(ownIds_.size())).first->second;
+      if (!m.rules[r].fairGroup.empty()) {
+        auto [it, added] = groupIndex.emplace(m.rules[r].fairGroup, static_cast<std::uint32_t>(members_.size()));
+        if (added) members_.emplace_back();
+        group_[r] = it->second;
+        members_[it->second].push_back(r);
+      }
+      for (ir::VarId v : variablesOf(m.rules[r])) users_[v].push_back(r);
+    }
+    groupSig_.resize(members_.size());
+    for (std::uint32_t g = 0; g < members_.size(); ++g) {
+      std::vector<std::uint32_t> sig;
+      for (std::uint32_t r : members_[g]) sig.push_back(own_[r]);
+      std::sort(sig.begin(), sig.end());
+      groupSig_[g] = sigIds_.emplace(std::move(sig), static_cast<std::uint32_t>(sigIds_.size())).first->second;
+    }
+    original_ = otherForms(identity_, true);
+    ruleStamp_.assign(rules, 0);
+    groupStamp_.assign(members_.size(), 0);
   }
 
-  // What a verified swap does to the rules: rule r becomes rules[r]. Rules with the same text are
-  // paired off in order, so the map is a bijection.
-  std::vector<std::uint32_t> ruleMap(const VarMap& map) const {
-    std::unordered_map<std::string, std::size_t> used;
+  // What a verified swap does to the rules: rule r becomes out[r]. The rules it touches are paired
+  // off by their texts, in order, so the map is a bijection; the others stay.
+  std::vector<std::uint32_t> ruleMap(const VarMap& map) {
     std::vector<std::uint32_t> out(m_.rules.size());
-    const std::vector<std::string> texts = ruleTexts(m_, map);
-    for (std::uint32_t r = 0; r < m_.rules.size(); ++r) {
-      const std::string& t = texts[r];
-      out[r] = ruleIndex_.at(t).at(used[t]++);
-    }
+    for (std::uint32_t r = 0; r < out.size(); ++r) out[r] = r;
+    forms_.moving(map);
+    const std::optional<Touched> t = touched(map);
+    if (!t) return out;  // not reached: only verified swaps are mapped
+    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> byKey;
+    for (std::uint32_t r : t->rules) byKey[key(own_[r], group_[r] == kNoGroup ? kNoGroup : groupSig_[group_[r]])].push_back(r);
+    std::unordered_map<std::uint64_t, std::size_t> used;
+    for (std::size_t i = 0; i < t->rules.size(); ++i) out[t->rules[i]] = byKey.at(t->keys[i]).at(used[t->keys[i]]++);
     return out;
   }
-
   // The swap of robots a and b as a permutation of the variables, if every variable has a twin.
   std::optional<VarMap> swap(std::int32_t a, std::int32_t b) const {
     const std::string& nameA = m_.robots[static_cast<std::size_t>(a)];
@@ -193,9 +313,18 @@ class Finder {
     return map;
   }
 
-  bool symmetric(std::int32_t a, std::int32_t b) const {
+  bool symmetric(std::int32_t a, std::int32_t b) {
     std::optional<VarMap> map = swap(a, b);
-    return map && text(m_, *map) == original_;
+    if (!map) return false;
+    forms_.moving(*map);
+    if (otherForms(*map, false) != original_) return false;
+    std::optional<Touched> t = touched(*map);
+    if (!t) return false;
+    std::vector<std::uint64_t> before;
+    for (std::uint32_t r : t->rules) before.push_back(key(own_[r], group_[r] == kNoGroup ? kNoGroup : groupSig_[group_[r]]));
+    std::sort(before.begin(), before.end());
+    std::sort(t->keys.begin(), t->keys.end());
+    return before == t->keys;
   }
 
   // The variables whose names mention robot r.
@@ -228,8 +357,81 @@ class Finder {
   const ir::Model& m_;
   std::unordered_map<std::string, ir::VarId> byName_;
   std::unordered_map<std::string, std::int32_t> robotIndex_;
-  ModelText original_;
-  std::unordered_map<std::string, std::vector<std::uint32_t>> ruleIndex_;  // by text: the rules
+
+ private:
+  // The invariants, properties and valid end by their forms' numbers: each must map to itself.
+  std::vector<std::uint32_t> otherForms(const VarMap& map, bool add) {
+    std::vector<std::uint32_t> out;
+    for (const ir::Invariant& inv : m_.invariants) out.push_back(forms_.of(inv.holds, map, add));
+    for (const ir::Property& p : m_.properties) out.push_back(forms_.of(p.formula, map, add));
+    if (m_.validEnd) out.push_back(forms_.of(*m_.validEnd, map, add));
+    return out;
+  }
+
+  static std::uint64_t key(std::uint32_t own, std::uint32_t sig) { return (static_cast<std::uint64_t>(own) << 32) | sig; }
+
+  // The rules a swap may change (those reading or writing a variable it moves, and the rest of
+  // their fairness groups), in index order, with the key (own text, group's texts) each has under
+  // the swap. Nullopt when one of those texts is no rule's or no group's of the model: the swap is
+  // then not a symmetry.
+  struct Touched {
+    std::vector<std::uint32_t> rules;
+    std::vector<std::uint64_t> keys;
+  };
+  std::optional<Touched> touched(const VarMap& map) {
+    ++stamp_;
+    std::vector<std::uint32_t> affected, groups;
+    for (ir::VarId v = 0; v < map.size(); ++v) {
+      if (map[v] == v) continue;
+      for (std::uint32_t r : users_[v]) {
+        if (ruleStamp_[r] == stamp_) continue;
+        ruleStamp_[r] = stamp_;
+        affected.push_back(r);
+        if (group_[r] != kNoGroup && groupStamp_[group_[r]] != stamp_) groupStamp_[group_[r]] = stamp_, groups.push_back(group_[r]);
+      }
+    }
+    std::unordered_map<std::uint32_t, std::uint32_t> mappedOwn;  // of the affected rules
+    for (std::uint32_t r : affected) {
+      const std::optional<std::string> text = ruleText(m_.rules[r], map, forms_, false);
+      if (!text) return std::nullopt;
+      auto it = ownIds_.find(*text);
+      if (it == ownIds_.end()) return std::nullopt;
+      mappedOwn[r] = it->second;
+    }
+    auto ownOf = [&](std::uint32_t r) {
+      auto it = mappedOwn.find(r);
+      return it == mappedOwn.end() ? own_[r] : it->second;
+    };
+    std::unordered_map<std::uint32_t, std::uint32_t> mappedSig;  // of the groups of affected rules
+    for (std::uint32_t g : groups) {
+      std::vector<std::uint32_t> sig;
+      for (std::uint32_t r : members_[g]) sig.push_back(ownOf(r));
+      std::sort(sig.begin(), sig.end());
+      auto it = sigIds_.find(sig);
+      if (it == sigIds_.end()) return std::nullopt;
+      mappedSig[g] = it->second;
+      for (std::uint32_t r : members_[g]) ruleStamp_[r] = stamp_;  // the whole group is touched
+    }
+    Touched t;
+    for (std::uint32_t r : affected) t.rules.push_back(r);
+    for (std::uint32_t g : groups) {
+      for (std::uint32_t r : members_[g]) t.rules.push_back(r);
+    }
+    std::sort(t.rules.begin(), t.rules.end());
+    t.rules.erase(std::unique(t.rules.begin(), t.rules.end()), t.rules.end());
+    for (std::uint32_t r : t.rules) t.keys.push_back(key(ownOf(r), group_[r] == kNoGroup ? kNoGroup : mappedSig.at(group_[r])));
+    return t;
+  }
+
+  VarMap identity_;
+  std::unordered_map<std::string, std::uint32_t> ownIds_;          // a rule's own text: its number
+  std::map<std::vector<std::uint32_t>, std::uint32_t> sigIds_;      // a group's sorted rule numbers: its number
+  std::vector<std::uint32_t> own_, group_, groupSig_;               // per rule, per rule, per group
+  std::vector<std::vector<std::uint32_t>> members_, users_;         // per group, per variable: rules
+  std::vector<std::uint64_t> ruleStamp_, groupStamp_;
+  std::uint64_t stamp_ = 0;
+  CanonTable forms_;
+  std::vector<std::uint32_t> original_;
 };
 
 // Robots whose variables look alike (the same names after the robot's own, the same ranges).
@@ -304,12 +506,20 @@ std::vector<std::string> Symmetry::describe(const ir::Model& model) const {
   std::vector<std::string> out;
   for (const Class& c : classes_) {
     std::string line;
-    std::uint64_t orderings = 1;
-    for (std::size_t i = 0; i < c.robots.size(); ++i) {
-      line += (line.empty() ? "" : " ") + model.robots[static_cast<std::size_t>(c.robots[i])];
-      orderings *= i + 1;
+    for (std::size_t i = 0; i < c.robots.size(); ++i) line += (line.empty() ? "" : " ") + model.robots[static_cast<std::size_t>(c.robots[i])];
+    // k! exactly while it fits in 64 bits (k <= 20), else as a power of ten.
+    const std::size_t k = c.robots.size();
+    std::string orderings;
+    if (k <= 20) {
+      std::uint64_t n = 1;
+      for (std::size_t i = 2; i <= k; ++i) n *= i;
+      orderings = std::to_string(n);
+    } else {
+      const double digits = std::lgamma(static_cast<double>(k) + 1) / std::log(10.0);
+      const double exponent = std::floor(digits);
+      orderings = fmt::format("{:.1f}e{}", std::pow(10.0, digits - exponent), static_cast<long long>(exponent));
     }
-    out.push_back(line + " (" + std::to_string(c.robots.size()) + "! = " + std::to_string(orderings) + " orderings)");
+    out.push_back(line + " (" + std::to_string(k) + "! = " + orderings + " orderings)");
   }
   return out;
 }

@@ -49,29 +49,6 @@ constexpr std::size_t kMaxDepth = 64;
 
 struct Invalid {};
 
-
-// The offset of the first bracket nested deeper than kMaxDepth, if there is one.
-std::optional<std::size_t> tooDeep(std::string_view t) {
-  std::size_t depth = 0;
-  bool inString = false;
-  for (std::size_t i = 0; i < t.size(); ++i) {
-    const char c = t[i];
-    if (inString) {
-      if (c == '\\') ++i;
-      else if (c == '"') inString = false;
-      continue;
-    }
-    if (c == '"') {
-      inString = true;
-    } else if (c == '[' || c == '{') {
-      if (++depth > kMaxDepth) return i;
-    } else if ((c == ']' || c == '}') && depth > 0) {
-      --depth;
-    }
-  }
-  return std::nullopt;
-}
-
 std::string pointerKey(const std::string& key) {
   std::string out;
   for (char c : key) out += c == '~' ? std::string("~0") : c == '/' ? std::string("~1") : std::string(1, c);
@@ -415,7 +392,7 @@ std::optional<ReplayedTrace> readTrace(const SourceManager& sources, FileId file
                                        const TraceReadOptions& options) {
   const std::string& text = sources.text(file);
   if (const auto nul = text.find('\0'); nul == std::string::npos) {
-    if (auto deep = tooDeep(text)) {
+    if (auto deep = jsonNestedDeeperThan(text, kMaxDepth)) {
       diags.error(jsonRangeAt(file, text, *deep), "nested more than " + std::to_string(kMaxDepth) + " levels deep: not a trace");
       return std::nullopt;
     }

@@ -4,12 +4,7 @@
 
 namespace semo {
 
-namespace {
-
-// The offset of the first bracket nested deeper than kMaxNesting, if there is one. Deeper input is
-// refused before the parser sees it: the readers that walk the parsed value (and JSON pointers to
-// its members, whose length grows with the depth) would pay for a depth bomb quadratically.
-std::optional<std::size_t> nestedTooDeeply(const std::string& t) {
+std::optional<std::size_t> jsonNestedDeeperThan(std::string_view t, std::size_t limit) {
   std::size_t depth = 0;
   bool inString = false;
   for (std::size_t i = 0; i < t.size(); ++i) {
@@ -20,15 +15,13 @@ std::optional<std::size_t> nestedTooDeeply(const std::string& t) {
     } else if (c == '"') {
       inString = true;
     } else if (c == '[' || c == '{') {
-      if (++depth > kMaxNesting) return i;
+      if (++depth > limit) return i;
     } else if ((c == ']' || c == '}') && depth > 0) {
       --depth;
     }
   }
   return std::nullopt;
 }
-
-}  // namespace
 
 SourceRange jsonRangeAt(FileId file, const std::string& text, std::size_t offset) {
   std::uint32_t line = 1, column = 1;
@@ -50,7 +43,7 @@ std::optional<nlohmann::json> parseJsonFile(const SourceManager& sources, FileId
     diags.error(jsonRangeAt(file, text, nul), "not valid JSON: a NUL byte");
     return std::nullopt;
   }
-  if (const auto deep = nestedTooDeeply(text)) {
+  if (const auto deep = jsonNestedDeeperThan(text, kMaxNesting)) {
     diags.error(jsonRangeAt(file, text, *deep), "nested too deeply (limit " + std::to_string(kMaxNesting) + ")");
     return std::nullopt;
   }

@@ -7,12 +7,13 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <mutex>
-#include <regex>
 #include <thread>
 #include <nlohmann/json.hpp>
 
+#include <fmt/format.h>
+
 #include "commands.hpp"
+#include "progress_line.hpp"
 #include "sequence_chart.hpp"
 #include "semo/checker/fingerprint.hpp"
 #include "semo/checker/markov.hpp"
@@ -30,8 +31,9 @@ bool isIrFile(const std::string& path) { return std::filesystem::path(path).exte
 
 }  // namespace
 
-std::unique_ptr<BuiltModel> buildModel(const ModelInput& in) {
+std::unique_ptr<BuiltModel> buildModel(const ModelInput& in, ProgressLine* line) {
   auto out = std::make_unique<BuiltModel>();
+  const auto started = std::chrono::steady_clock::now();
   DiagnosticEngine diags(out->sources);
   if (isIrFile(in.input)) {
     std::string why;
@@ -39,6 +41,7 @@ std::unique_ptr<BuiltModel> buildModel(const ModelInput& in) {
     if (file == kNoFile) {
       diags.error({}, why);
     } else {
+      if (line != nullptr) line->phase(fmt::format("reading the IR model ({} bytes)", out->sources.text(file).size()));
       out->model = ir::parseText(out->sources, file, diags);
     }
     if (in.crash || !in.crashPerTeam.empty() || in.loss || in.fairLoss) {
@@ -52,28 +55,20 @@ std::unique_ptr<BuiltModel> buildModel(const ModelInput& in) {
     options.crashPerTeam = in.crashPerTeam;
     options.lossOverride = in.loss;
     options.fairLossOverride = in.fairLoss;
+    if (line != nullptr) {
+      line->phase(fmt::format("translating the mission: {} robots in {} teams", out->mission->robots.size(), out->mission->teams.size()));
+    }
     out->translation = translateMission(*out->mission, options, out->sources, diags);
     if (out->translation) out->model = out->translation->model;
   }
   diags.sortByPosition();
   diags.print(std::cerr);
   if (diags.hasErrors() || !out->model) return nullptr;
+  out->buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return out;
 }
 
 namespace {
-
-// On a terminal, a phase that says how far it is ("depth 4 of 5", "(3 of 7)") gets a bar for it:
-// "[######----] ".
-std::string progressBar(const std::string& what) {
-  static const std::regex fraction(R"(([0-9]+) of ([0-9]+))");
-  std::smatch m;
-  if (!std::regex_search(what, m, fraction)) return {};
-  const double done = std::stod(m[1].str()), all = std::stod(m[2].str());
-  if (!(all > 0)) return {};
-  const auto filled = static_cast<std::size_t>(std::clamp(10.0 * done / all, 0.0, 10.0));
-  return "[" + std::string(filled, '#') + std::string(10 - filled, '-') + "] ";
-}
 
 // --props FILE: per line a property name or glob, or `check a, b` as in the verify block; `#`
 // starts a comment. A `property` line would need the mission's formula syntax: refused, with its
@@ -120,7 +115,38 @@ bool readPropsFile(const std::string& path, std::vector<std::string>& out, Sourc
 
 }  // namespace
 
-checker::VerifyOptions verifyOptions(const CheckOptions& options) {
+// The model's size, and what the search will try. Said at once for a large model (a team of
+// hundreds of robots, thousands of rules), else only once the run has lasted long enough to print
+// its phases.
+void announceSearch(const BuiltModel& built, const CheckOptions& o, ProgressLine& line) {
+  const ir::Model& m = *built.model;
+  auto count = [](std::uint64_t n, const char* one, const char* many) { return withThousands(n) + " " + (n == 1 ? one : many); };
+  std::string text = fmt::format("model: {}, {}, {}; {}{}, {}", count(m.robots.size(), "robot", "robots"),
+                                 count(m.variables.size(), "variable", "variables"), count(m.rules.size(), "rule", "rules"),
+                                 count(m.invariants.size(), "invariant", "invariants"), m.validEnd ? " and deadlock freedom" : "",
+                                 count(o.safetyOnly ? 0 : m.properties.size(), "LTL property", "LTL properties"));
+  if (built.buildSeconds >= 1.0) text += fmt::format(" (built in {:.1f} s)", built.buildSeconds);
+  text += "\n  trying: ";
+  const std::string symmetry = o.symmetry ? ", one state per ordering of interchangeable robots" : "";
+  const std::string explicitSearch = "a breadth-first search of the states (at most " + withThousands(o.maxStates) +
+                                    (o.maxDepth != UINT32_MAX ? ", to depth " + std::to_string(o.maxDepth) : std::string()) + symmetry + ")";
+  const std::string ltl = o.safetyOnly || m.properties.empty() ? std::string()
+                          : o.slicing ? "; then each LTL property on its product, searched whole if the state space is small, else on slices of the model refined by counterexamples"
+                                      : "; then each LTL property on its product with the whole model";
+  if (o.engine == "smt") {
+    text += "Z3: bounded model checking" + (o.maxDepth != UINT32_MAX ? " to depth " + std::to_string(o.maxDepth) : std::string(" to depth 5")) +
+            (o.bmcOnly ? "" : ", then k-induction and IC3") + " (safety properties only)";
+  } else if (o.engine == "auto") {
+    text += explicitSearch + " within 2,000,000 states, else Z3 (bounded model checking, k-induction, IC3)" + ltl;
+  } else {
+    text += explicitSearch + ltl;
+  }
+  const bool large = m.robots.size() >= 50 || m.variables.size() >= 1000 || m.rules.size() >= 5000 || built.buildSeconds >= 2.0;
+  if (large) line.say(text);
+  else line.sayIfLong(text);
+}
+
+checker::VerifyOptions verifyOptions(const CheckOptions& options, ProgressLine* line) {
   checker::VerifyOptions v;
   v.engine = options.engine == "smt" ? checker::Engine::Smt : options.engine == "auto" ? checker::Engine::Auto : checker::Engine::Explicit;
   v.limits.maxStates = options.maxStates;
@@ -139,37 +165,20 @@ checker::VerifyOptions verifyOptions(const CheckOptions& options) {
   v.smt.timeoutMs = options.smtTimeoutS * 1000u;
   v.crashOverride = options.model.crash;
   v.crashPerTeam = options.model.crashPerTeam;
-  if (!options.json) {
-    // Each long phase said as it starts (a liveness property, a BMC depth, an IC3 run), once the run
-    // has taken two seconds: quick checks stay quiet. On a terminal the line is rewritten in place.
-    const bool onTerminal = isatty(STDERR_FILENO) != 0;
-    auto phase = [onTerminal, started = std::chrono::steady_clock::now(), lock = std::make_shared<std::mutex>()](const std::string& what) {
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-      if (seconds < 2.0) return;
-      const std::lock_guard<std::mutex> hold(*lock);
-      std::cerr << (onTerminal ? "\r\x1b[K" + progressBar(what) : std::string()) << "[" << static_cast<long long>(seconds) << " s] " << what
-                << (onTerminal ? "" : "\n") << std::flush;
-    };
-    v.limits.onPhase = phase;
-    v.smt.onPhase = phase;
-    // On a terminal the line is rewritten in place; in a log, one line every ten seconds.
-    const bool terminal = isatty(STDERR_FILENO) != 0;
-    v.limits.onProgress = [terminal, last = -10.0](const checker::Progress& p) mutable {
-      if (!terminal && p.seconds - last < 10.0) return;
-      last = p.seconds;
-      std::cerr << (terminal ? "\r" : "") << "searching: " << p.states << " states, "
-                << static_cast<std::uint64_t>(p.states / p.seconds) << " states/s, depth " << p.depth << ", "
-                << (p.bytes >> 20) << " MiB, " << static_cast<int>(p.seconds) << " s" << (terminal ? "   " : "\n") << std::flush;
-    };
+  if (line != nullptr) {
+    v.limits.onPhase = [line](const std::string& what) { line->phase(what); };
+    v.smt.onPhase = v.limits.onPhase;
+    v.limits.onProgress = [line](const checker::Progress& p) { line->searched(p); };
   }
   return v;
 }
 
 int runCheck(const CheckOptions& options) {
-  std::unique_ptr<BuiltModel> built = buildModel(options.model);
+  ProgressLine line(!options.json);
+  std::unique_ptr<BuiltModel> built = buildModel(options.model, &line);
   if (!built) return kBadInput;
   DiagnosticEngine diags(built->sources);
-  checker::VerifyOptions verify = verifyOptions(options);
+  checker::VerifyOptions verify = verifyOptions(options, &line);
   std::vector<std::string> globs = options.props, selected;
   if (options.propsFile && !readPropsFile(*options.propsFile, globs, built->sources, diags)) {
     diags.print(std::cerr);
@@ -203,14 +212,14 @@ int runCheck(const CheckOptions& options) {
     }
     verify.propertyGlobs = globs;
   }
+  announceSearch(*built, options, line);
   std::optional<checker::Report> report =
       checker::verify(*built->model, built->mission ? &*built->mission : nullptr, verify, diags);
+  line.stop();
   diags.sortByPosition();
   diags.print(std::cerr);
   if (!report) return kBadInput;
   if (!fingerprint.empty()) report->modelFingerprint = fingerprint;
-  const bool searchedLong = report && (report->safety.seconds >= 1.0 || report->liveness.seconds >= 1.0);
-  if (searchedLong && !options.json && isatty(STDERR_FILENO) != 0) std::cerr << "\n";  // after the progress line
   nlohmann::json json = reportJson(*report, *built->model, options.model);
   if (!globs.empty()) json["selection"] = {{"globs", globs}, {"properties", selected}};
   // --trace-out keeps what --json prints (verdicts and counterexamples, specs/trace.md) in a file,
@@ -264,8 +273,10 @@ bool deterministicWithin(const ir::Model& model, std::size_t limit) {
 }  // namespace
 
 int runExport(const ExportOptions& options) {
-  std::unique_ptr<BuiltModel> built = buildModel(options.model);
+  ProgressLine line(true);
+  std::unique_ptr<BuiltModel> built = buildModel(options.model, &line);
   if (!built) return kBadInput;
+  line.phase("writing the model as " + (options.format == "ir" ? std::string("IR") : options.format == "prism" ? std::string("PRISM") : std::string("Promela")));
   const ir::Model& model = *built->model;
   if ((options.spinBreadthFirst || options.spinLiveness) && options.format != "promela") {
     std::cerr << "semo-verify: error: --spin-bfs and --spin-ltl apply to --promela only\n";
@@ -291,6 +302,7 @@ int runExport(const ExportOptions& options) {
   std::vector<std::string> inputs = filesRead(built->sources);  // the URDF files the strategy names too
   inputs.insert(inputs.end(), {in.input, in.strategy.value_or(""), in.robotsDir.value_or("")});
   if (!outputsSpareInputs(outputs, inputs)) return kBadInput;
+  line.stop();
   if (!options.output) std::cout << text;
   for (const auto& [path, content] : {std::pair{options.output, &text}, std::pair{options.properties, &properties}}) {
     if (path && !writeAtomically(*path, *content)) {

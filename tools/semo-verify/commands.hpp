@@ -183,16 +183,24 @@ struct BuiltModel {
   std::optional<model::MissionModel> mission;
   std::optional<Translation> translation;  // a mission's: the IR and what it means (emit projects it)
   std::optional<ir::Model> model;
+  double buildSeconds = 0;  // reading and translating
 };
-// Diagnostics are printed; null on error.
-std::unique_ptr<BuiltModel> buildModel(const ModelInput& in);
-// The options of `check` as the verification facade takes them.
-checker::VerifyOptions verifyOptions(const CheckOptions& options);
+class ProgressLine;
+// Diagnostics are printed; null on error. `line`, if given, is told the phase (reading,
+// translating) for a long build.
+std::unique_ptr<BuiltModel> buildModel(const ModelInput& in, ProgressLine* line = nullptr);
+// The options of `check` as the verification facade takes them; `line`, if given, gets the
+// searches' phases and counts.
+checker::VerifyOptions verifyOptions(const CheckOptions& options, ProgressLine* line = nullptr);
+// The model's size and what the search will try, before a search (check, emit).
+void announceSearch(const BuiltModel& built, const CheckOptions& options, ProgressLine& line);
 // A Report as `check` prints it (check_report.cpp).
 std::string reportText(const checker::Report& report, const ir::Model& model, const std::string& input, bool bmcOnly);
 nlohmann::json reportJson(const checker::Report& report, const ir::Model& model, const ModelInput& in);
 // Seconds as a stream prints a double ("0.00209936").
 std::string fmtSeconds(double seconds);
+// 1234567 as "1,234,567" (no locale: the machine may have none but C).
+std::string withThousands(std::uint64_t n);
 // For CI (check_formats.cpp): JUnit XML (a test case per property), SARIF 2.1.0 of the verdicts
 // (violations and unknowns with their places, a counterexample as a code flow), and of diagnostics.
 std::string junitXml(const checker::Report& report, const ir::Model& model, const std::string& input);

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "progress_line.hpp"
 #include "semo/codegen/emit.hpp"
 
 namespace semo::cli {
@@ -103,7 +104,8 @@ int runEmit(const EmitOptions& options) {
                  "`assume crash <= N in TEAM`\n";
     return kBadInput;
   }
-  std::unique_ptr<BuiltModel> built = buildModel(in);
+  ProgressLine line(!options.check.json);
+  std::unique_ptr<BuiltModel> built = buildModel(in, &line);
   if (!built) return kBadInput;
   std::vector<std::string> inputs = filesRead(built->sources);
   if (in.robotsDir) inputs.push_back(*in.robotsDir);
@@ -117,12 +119,13 @@ int runEmit(const EmitOptions& options) {
     }
   }
 
-  checker::VerifyOptions verify = verifyOptions(options.check);
+  checker::VerifyOptions verify = verifyOptions(options.check, &line);
   verify.taskGraphs = true;
   verify.bounds.timeoutMs = options.proofTimeoutMs;
   DiagnosticEngine diags(built->sources);
+  announceSearch(*built, options.check, line);
   std::optional<checker::Report> report = checker::verify(*built->model, &*built->mission, verify, diags);
-  if (report && (report->safety.seconds >= 1.0 || report->liveness.seconds >= 1.0) && isatty(STDERR_FILENO) != 0) std::cerr << "\n";
+  line.stop();
   diags.sortByPosition();
   diags.print(std::cerr);
   if (!report) return kBadInput;

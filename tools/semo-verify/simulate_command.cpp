@@ -47,16 +47,6 @@ double closestToObstacle(const runtime::SimTrace& trace) {
 
 std::string robotName(const runtime::MissionTables& t, std::uint32_t r) { return r < t.robots.size() ? t.robots[r].name : "none"; }
 
-// 1234567 -> "1,234,567"
-std::string grouped(std::uint64_t n) {
-  std::string digits = std::to_string(n), out;
-  for (std::size_t i = 0; i < digits.size(); ++i) {
-    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
-    out += digits[i];
-  }
-  return out;
-}
-
 // The robots' dataflow in one line (specs/runtime.md, "Dataflow"), and the scenarios not run.
 void printDataflow(const runtime::MissionTables& t, const std::vector<runtime::DataflowRunSummary>& robots) {
   std::uint64_t iterations = 0, scenarios = 0, stalls = 0, overflows = 0, channels = 0, full = 0, running = 0;
@@ -80,7 +70,7 @@ void printDataflow(const runtime::MissionTables& t, const std::vector<runtime::D
     }
     for (const std::string& n : d.notRun) notRun.push_back(robotName(t, static_cast<std::uint32_t>(r)) + " " + n);
   }
-  std::cout << fmt::format("  dataflow: {} iterations of {} scenarios on {} robots", grouped(iterations), scenarios, running);
+  std::cout << fmt::format("  dataflow: {} iterations of {} scenarios on {} robots", withThousands(iterations), scenarios, running);
   if (fill >= 0) std::cout << fmt::format(", largest fill {}/{} tokens ({})", fill, capacity, fullest);
   std::cout << fmt::format(", {} of {} channels reached their proven capacity, {} stalls, {} overflows\n", full, channels, stalls, overflows);
   if (!notRun.empty()) {
@@ -315,10 +305,10 @@ int runSimulate(const SimulateOptions& options) {
     std::cout << fmt::format("  closest to an obstacle: {:.3f} m at worst, {:.3f} m at best; {} runs where a robot reached one\n", closestMin,
                              closestMax, reachedObstacle);
   }
-  std::cout << fmt::format("  messages: {} sent, {} lost in all\n", grouped(sent), grouped(lost));
+  std::cout << fmt::format("  messages: {} sent, {} lost in all\n", withThousands(sent), withThousands(lost));
   if (outside > 0) std::cout << fmt::format("  {} runs left the model's assumptions\n", outside);
   if (std::any_of(tables.robots.begin(), tables.robots.end(), [](const runtime::RobotTable& r) { return !r.dataflow.tasks.empty(); })) {
-    std::cout << fmt::format("  dataflow: {} iterations in all, {} stalls, {} overflows\n", grouped(dataflowIterations), dataflowStalls,
+    std::cout << fmt::format("  dataflow: {} iterations in all, {} stalls, {} overflows\n", withThousands(dataflowIterations), dataflowStalls,
                              dataflowOverflows);
   }
   if (options.checkConformance) std::cout << fmt::format("  conformance: {} runs with a mismatch or a violated property\n", mismatched);
