@@ -11,6 +11,7 @@
 
 #include "analyze_internal.hpp"
 #include "probability_chart.hpp"
+#include "progress_line.hpp"
 #include "semo/checker/markov.hpp"
 #include "semo/checker/statistical.hpp"
 #include "semo/semantics/ir_text.hpp"
@@ -103,7 +104,11 @@ int analyzeBySampling(const AnalyzeOptions& options, const ir::Model& model, con
 }  // namespace
 
 int runAnalyze(const AnalyzeOptions& options) {
-  std::unique_ptr<BuiltModel> built = buildModel(options.model);
+  std::unique_ptr<BuiltModel> built;
+  {
+    ProgressLine line(true);  // a large mission's translation; the analyses say their own progress
+    built = buildModel(options.model, &line);
+  }
   if (!built) return kBadInput;
   if (built->mission) {
     std::vector<Output> outputs;
