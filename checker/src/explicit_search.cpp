@@ -173,7 +173,8 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
           break;
         }
         const std::size_t local = i - e.firstState, storedAfter = inserter.sizeAfter(i);
-        result.transitions += e.begin[local + 1] - e.begin[local];
+        result.transitions += e.begin[local + 1] - e.begin[local] + e.skipped[local];
+        result.transitionsSkipped += e.skipped[local];
         for (std::size_t p = 0; p < invariants; ++p) {
           if (isOpen(p) && violation[p] >= stored && violation[p] < storedAfter) violate(p, violation[p], "invariant");
         }

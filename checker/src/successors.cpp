@@ -2,12 +2,17 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdlib>
 #include <stdexcept>
 
 namespace semo::checker::detail {
 
 SuccessorGenerator::SuccessorGenerator(const CompiledModel& cm, const Symmetry* symmetry, unsigned threads)
-    : cm_(cm), useSymmetry_(symmetry != nullptr), workers_(std::max(1u, threads)) {
+    : cm_(cm),
+      useSymmetry_(symmetry != nullptr),
+      // A developers' knob, to measure what the pruning saves (checker/README.md).
+      pruneEqualRobots_(useSymmetry_ && std::getenv("SEMO_NO_EQUAL_ROBOT_PRUNING") == nullptr),
+      workers_(std::max(1u, threads)) {
   for (Worker& w : workers_) {
     if (symmetry != nullptr) w.symmetry = *symmetry;
   }
@@ -23,16 +28,39 @@ void SuccessorGenerator::run(Worker& w, const StateStore& store, Expansion& out)
   out.via.clear();
   out.begin.clear();
   out.enabled.clear();
+  out.skipped.clear();
   out.rangeError.reset();
+  if (useSymmetry_ && w.seen.size() != cm_.rules().size()) {
+    w.seen.assign(cm_.rules().size(), 0);
+    w.successors.assign(cm_.rules().size(), 0);
+  }
   for (std::size_t i = out.firstState; i < out.endState; ++i) {
     out.begin.push_back(static_cast<std::uint32_t>(out.via.size()));
     layout.unpack(store.state(i), w.values.data());
     bool enabled = false;
+    std::uint32_t skipped = 0;
+    // The state is canonical: robots with equal values sit side by side.
+    const bool pruning = pruneEqualRobots_ && w.symmetry.equalNeighbours(w.values.data(), w.equal);
+    ++w.stamp;
     cm_.candidateRules(w.values.data(), w.candidates);
     for (std::uint32_t r : w.candidates) {
       const CompiledRule& rule = cm_.rules()[r];
+      std::uint32_t lower = 0;
+      if (pruning && w.symmetry.redundant(r, w.equal, lower)) {
+        // Enabled exactly when `lower` is (the swap leaves the state as it is), which came first
+        // (candidates ascend); its successors are this rule's, up to that swap.
+        const std::uint32_t n = w.seen[lower] == w.stamp ? w.successors[lower] : 0;
+        w.seen[r] = w.stamp;
+        w.successors[r] = n;
+        skipped += n;
+        continue;
+      }
       if (!rule.guard.holds(w.values.data())) continue;
       enabled = true;
+      if (useSymmetry_) {
+        w.seen[r] = w.stamp;
+        w.successors[r] = static_cast<std::uint32_t>(rule.branches.size());
+      }
       for (std::size_t b = 0; b < rule.branches.size(); ++b) {
         const CompiledBranch& branch = rule.branches[b];
         w.scratch.resize(branch.assignments.size());
@@ -49,6 +77,7 @@ void SuccessorGenerator::run(Worker& w, const StateStore& store, Expansion& out)
           }
           out.rangeError = Expansion::RangeError{i, std::move(step)};
           out.enabled.push_back(1);
+          out.skipped.push_back(skipped);
           out.endState = i + 1;  // the search stops here
           out.begin.push_back(static_cast<std::uint32_t>(out.via.size()));
           return;
@@ -69,6 +98,7 @@ void SuccessorGenerator::run(Worker& w, const StateStore& store, Expansion& out)
       }
     }
     out.enabled.push_back(enabled ? 1 : 0);
+    out.skipped.push_back(skipped);
   }
   out.begin.push_back(static_cast<std::uint32_t>(out.via.size()));
 }

@@ -25,6 +25,9 @@ struct alignas(64) Expansion {
   std::vector<std::uint32_t> via;      // rule << 8 | branch
   std::vector<std::uint32_t> begin;    // per state: its first successor; one more entry at the end
   std::vector<std::uint8_t> enabled;   // per state: some rule enabled
+  // Per state: successors not generated, as a lower rule's image under a swap that leaves the
+  // state as it is already gave them (Symmetry::redundant); counted as transitions all the same.
+  std::vector<std::uint32_t> skipped;
   // The first update out of its variable's range: the state, the step, and what it changes. The
   // successors of that state before it are listed; later states of the run are not expanded.
   struct RangeError {
@@ -55,11 +58,17 @@ class SuccessorGenerator {
     std::vector<std::uint64_t> packed;
     std::vector<std::uint32_t> candidates;
     Symmetry symmetry;  // a copy: canonicalisation keeps scratch space
+    std::vector<char> equal;  // Symmetry::equalNeighbours of the state being expanded
+    // Per rule, the successors it had in the state being expanded, valid where `seen` is `stamp`.
+    std::vector<std::uint32_t> successors;
+    std::vector<std::uint64_t> seen;
+    std::uint64_t stamp = 0;
   };
   void run(Worker& w, const StateStore& store, Expansion& out) const;
 
   const CompiledModel& cm_;
   bool useSymmetry_;
+  bool pruneEqualRobots_;  // skip the rules Symmetry::redundant names
   std::vector<Worker> workers_;
   std::vector<Expansion> parts_;
 };

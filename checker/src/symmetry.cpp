@@ -499,7 +499,69 @@ Symmetry Symmetry::find(const ir::Model& model) {
     }
   }
   s.swaps_ = std::make_shared<const std::vector<Swap>>(std::move(swaps));
+  if (s.classes_.empty()) return s;
+  auto touch = std::make_shared<Touch>();
+  std::vector<std::uint32_t> slotOf(model.variables.size(), UINT32_MAX);
+  for (std::uint32_t c = 0; c < s.classes_.size(); ++c) {
+    const Class& k = s.classes_[c];
+    for (std::uint32_t p = 0; p < k.robots.size(); ++p) {
+      for (ir::VarId v : k.blocks[p]) slotOf[v] = static_cast<std::uint32_t>(k.firstSlot + p);
+      touch->slotClass.push_back(c);
+      touch->slotPosition.push_back(p);
+    }
+  }
+  touch->start.push_back(0);
+  for (const ir::Rule& r : model.rules) {
+    std::vector<std::uint32_t> slots;
+    for (ir::VarId v : variablesOf(r)) {
+      if (slotOf[v] != UINT32_MAX) slots.push_back(slotOf[v]);
+    }
+    std::sort(slots.begin(), slots.end());
+    slots.erase(std::unique(slots.begin(), slots.end()), slots.end());
+    touch->slots.insert(touch->slots.end(), slots.begin(), slots.end());
+    touch->start.push_back(static_cast<std::uint32_t>(touch->slots.size()));
+  }
+  s.touch_ = std::move(touch);
   return s;
+}
+
+bool Symmetry::equalNeighbours(const Value* values, std::vector<char>& equal) const {
+  equal.assign(slots_, 0);
+  bool any = false;
+  for (const Class& c : classes_) {
+    for (std::size_t p = 1; p < c.robots.size(); ++p) {
+      const std::vector<ir::VarId>& a = c.blocks[p - 1];
+      const std::vector<ir::VarId>& b = c.blocks[p];
+      bool same = true;
+      for (std::size_t j = 0; j < a.size() && same; ++j) same = values[a[j]] == values[b[j]];
+      if (same) equal[c.firstSlot + p] = 1, any = true;
+    }
+  }
+  return any;
+}
+
+std::uint32_t Symmetry::swappedWithPrevious(std::uint32_t rule, std::size_t slot) const {
+  const Class& c = classes_[touch_->slotClass[slot]];
+  const std::size_t b = touch_->slotPosition[slot], a = b - 1;
+  // The generators swap position 0 with position i; (a b) is (0 a)(0 b)(0 a), or (0 b) for a = 0.
+  auto star = [&](std::size_t i, std::uint32_t r) { return (*swaps_)[c.firstSwap + i - 1].rules[r]; };
+  return a == 0 ? star(b, rule) : star(a, star(b, star(a, rule)));
+}
+
+bool Symmetry::redundant(std::uint32_t rule, const std::vector<char>& equal, std::uint32_t& lower) const {
+  for (std::uint32_t k = touch_->start[rule]; k < touch_->start[rule + 1]; ++k) {
+    const std::uint32_t slot = touch_->slots[k];
+    // The swaps with the slot before and with the slot after, where those robots are equal.
+    for (const std::size_t s : {static_cast<std::size_t>(slot), static_cast<std::size_t>(slot) + 1}) {
+      if (s >= slots_ || equal[s] == 0 || touch_->slotClass[s] != touch_->slotClass[slot]) continue;
+      const std::uint32_t image = swappedWithPrevious(rule, s);
+      if (image < rule) {
+        lower = image;
+        return true;
+      }
+    }
+  }
+  return false;
 }
 
 std::vector<std::string> Symmetry::describe(const ir::Model& model) const {

@@ -2,6 +2,8 @@
 // export's naming and arithmetic (its state counts are cross-checked with SPIN in tests/e2e/spin).
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include "semo/checker/explicit_search.hpp"
 #include "semo/checker/promela_export.hpp"
 #include "semo/checker/symmetry.hpp"
@@ -453,6 +455,65 @@ TEST(Symmetry, ALargeClassIsFoundAndItsOrderingsArePrintedAsAPowerOfTen) {
   const SearchResult reduced = checkSafety(m, SearchLimits{});
   EXPECT_TRUE(reduced.complete);
   EXPECT_EQ(reduced.states, 650u);
+}
+
+// Six robots that find a fact (one of them, once) or learn it from one that holds it, then count
+// to 2; invariants over the team, one violated. Rules of one robot and of pairs of robots.
+std::string gossipTeam(const std::string& violated) {
+  std::string text = "semo-ir 1;\nrobots";
+  for (int r = 0; r < 6; ++r) text += " r" + std::to_string(r);
+  text += ";\nvar found : bool = false;\n";
+  std::string all;
+  for (int r = 0; r < 6; ++r) {
+    const std::string n = "r" + std::to_string(r);
+    text += "var " + n + ".k : bool = false @robot(" + n + ");\nvar " + n + ".c : 0..2 = 0 @robot(" + n + ");\n";
+  }
+  for (int r = 0; r < 6; ++r) {
+    const std::string n = "r" + std::to_string(r);
+    text += "rule " + n + ".find @robot(" + n + ") : !found && !" + n + ".k -> found' = true, " + n + ".k' = true;\n";
+    for (int q = 0; q < 6; ++q) {
+      if (q == r) continue;
+      const std::string o = "r" + std::to_string(q);
+      text += "rule " + n + ".learn." + o + " @robot(" + n + ") : !" + n + ".k && " + o + ".k -> " + n + ".k' = true;\n";
+    }
+    text += "rule " + n + ".count @robot(" + n + ") : " + n + ".k && " + n + ".c < 2 -> " + n + ".c' = " + n + ".c + 1;\n";
+    all += (all.empty() ? "" : " + ") + n + ".c";
+  }
+  return text + "invariant bounded : " + all + " <= 12;\ninvariant small : " + all + " <= " + violated + ";\n";
+}
+
+// Skipping the rules that a swap of equal neighbouring robots maps to lower ones changes nothing
+// the search reports: states, transitions, depth, verdicts and counterexamples, on any threads.
+TEST(Symmetry, SkippingTheRulesOfEqualRobotsChangesNoResult) {
+  for (const std::string& model : {gossipTeam("9"), gossipTeam("12")}) {
+    const ir::Model m = parse(model);
+    ASSERT_FALSE(Symmetry::find(m).empty());
+    for (unsigned threads : {1u, 2u}) {
+      SearchLimits limits;
+      limits.threads = threads;
+      setenv("SEMO_NO_EQUAL_ROBOT_PRUNING", "1", 1);
+      const SearchResult every = checkSafety(m, limits);
+      unsetenv("SEMO_NO_EQUAL_ROBOT_PRUNING");
+      const SearchResult pruned = checkSafety(m, limits);
+      EXPECT_GT(every.states, 20u);
+      EXPECT_EQ(every.transitionsSkipped, 0u);
+      EXPECT_GT(pruned.transitionsSkipped, every.transitions / 4) << "the rules of equal robots are skipped";
+      EXPECT_EQ(pruned.states, every.states);
+      EXPECT_EQ(pruned.transitions, every.transitions);
+      EXPECT_EQ(pruned.depth, every.depth);
+      EXPECT_EQ(pruned.complete, every.complete);
+      ASSERT_EQ(pruned.properties.size(), every.properties.size());
+      for (std::size_t p = 0; p < every.properties.size(); ++p) {
+        EXPECT_EQ(pruned.properties[p].verdict, every.properties[p].verdict) << every.properties[p].name;
+        ASSERT_EQ(pruned.properties[p].counterexample.has_value(), every.properties[p].counterexample.has_value());
+        if (!every.properties[p].counterexample) continue;
+        const Trace& a = *pruned.properties[p].counterexample;
+        const Trace& b = *every.properties[p].counterexample;
+        ASSERT_EQ(a.steps.size(), b.steps.size());
+        for (std::size_t k = 0; k < a.steps.size(); ++k) EXPECT_EQ(a.steps[k].rule, b.steps[k].rule) << "step " << k;
+      }
+    }
+  }
 }
 
 TEST(Symmetry, InterchangeableRobotsAreFoundAndCountedOncePerOrbit) {

@@ -52,6 +52,9 @@ struct SearchResult {
   std::vector<PropertyResult> properties;  // the invariants in order, then deadlock_freedom if asked
   std::uint64_t states = 0;
   std::uint64_t transitions = 0;
+  // Of those, the ones not generated: a lower rule's image under a swap of two equal robots gave
+  // the same successors (Symmetry::redundant).
+  std::uint64_t transitionsSkipped = 0;
   std::uint32_t depth = 0;       // BFS levels explored
   bool complete = false;         // the whole reachable state space was explored
   std::string limitReached;      // why the search stopped early, if it did

@@ -45,6 +45,17 @@ class Symmetry {
   // Whether every permutation leaves the value of `e` unchanged (e.g. a property's atom).
   [[nodiscard]] bool invariant(const ir::Expr& e) const;
 
+  // For expanding a canonical state: two robots of a class in neighbouring positions with equal
+  // values can be swapped without changing the state, so a rule and its image under that swap
+  // lead to the same canonical successors. `equalNeighbours` marks, per slot, whether its robot's
+  // values equal those of the slot before it in its class (false when no slot is so marked, the
+  // usual case in a small team). `redundant` says whether such a swap maps `rule` to a lower rule
+  // (`lower`), whose successors the search has then already generated from this state: the rule
+  // with the lowest number of each orbit of the stabiliser is never redundant, so no successor is
+  // lost, and the expansion of a swarm's state costs its distinct robots, not all of them.
+  bool equalNeighbours(const Value* values, std::vector<char>& equal) const;
+  [[nodiscard]] bool redundant(std::uint32_t rule, const std::vector<char>& equal, std::uint32_t& lower) const;
+
  private:
   struct Class {
     std::vector<std::int32_t> robots;
@@ -58,9 +69,18 @@ class Symmetry {
     std::vector<std::uint32_t> rules;
   };
   void canonicalize(Value* values, Permutation* moved) const;
+  // The rule under the swap of the robots in slot `slot` and the slot before it (same class).
+  [[nodiscard]] std::uint32_t swappedWithPrevious(std::uint32_t rule, std::size_t slot) const;
 
+  // Per rule, the slots of the robots whose variables it reads or writes (rules[start[r] ..
+  // start[r + 1]]); per slot, its class and position. Shared, as the swaps.
+  struct Touch {
+    std::vector<std::uint32_t> start, slots;
+    std::vector<std::uint32_t> slotClass, slotPosition;
+  };
   std::vector<Class> classes_;
   std::shared_ptr<const std::vector<Swap>> swaps_;
+  std::shared_ptr<const Touch> touch_;
   std::size_t slots_ = 0;
   mutable std::vector<Value> scratch_;
   mutable std::vector<std::size_t> order_;
