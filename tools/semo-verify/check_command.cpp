@@ -61,6 +61,7 @@ std::unique_ptr<BuiltModel> buildModel(const ModelInput& in, ProgressLine* line)
     out->translation = translateMission(*out->mission, options, out->sources, diags);
     if (out->translation) out->model = out->translation->model;
   }
+  if (line != nullptr) line->pause();
   diags.sortByPosition();
   diags.print(std::cerr);
   if (diags.hasErrors() || !out->model) return nullptr;

@@ -70,6 +70,15 @@ void ProgressLine::say(const std::string& line) {
   lastPrinted_ = secondsSinceStart();
 }
 
+void ProgressLine::pause() {
+  if (!enabled_) return;
+  const std::lock_guard<std::mutex> hold(lock_);
+  phase_.clear();
+  counts_.clear();
+  if (lineOpen_) std::cerr << "\n" << std::flush;
+  lineOpen_ = false;
+}
+
 void ProgressLine::sayIfLong(const std::string& line) {
   if (!enabled_) return;
   const std::lock_guard<std::mutex> hold(lock_);

@@ -33,6 +33,9 @@ class ProgressLine {
   // A line printed before anything else, should the run last long enough to print anything (the
   // model's size before a search that may or may not take long).
   void sayIfLong(const std::string& line);
+  // No phase running (until the next): the heartbeat stays silent and a rewritten line is ended,
+  // so that what is printed next (diagnostics) stands on its own lines.
+  void pause();
   // Ends the heartbeat and, on a terminal, the rewritten line: what follows starts on a line of its
   // own. Idempotent.
   void stop();
