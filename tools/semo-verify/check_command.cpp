@@ -56,7 +56,8 @@ std::unique_ptr<BuiltModel> buildModel(const ModelInput& in, ProgressLine* line)
     options.lossOverride = in.loss;
     options.fairLossOverride = in.fairLoss;
     if (line != nullptr) {
-      line->phase(fmt::format("translating the mission: {} robots in {} teams", out->mission->robots.size(), out->mission->teams.size()));
+      const std::size_t teams = out->mission->teams.size();
+      line->phase(fmt::format("translating the mission: {} robots in {} team{}", out->mission->robots.size(), teams, teams == 1 ? "" : "s"));
     }
     out->translation = translateMission(*out->mission, options, out->sources, diags);
     if (out->translation) out->model = out->translation->model;
