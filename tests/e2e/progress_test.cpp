@@ -1,4 +1,4 @@
-// A long run says what it is doing: the model's size and what the search will try before it starts
+// Long runs. A long run says what it is doing: the model's size and what the search will try before it starts
 // (at once for a large model), then its phases, and a heartbeat while a phase reports nothing
 // itself. A quick run stays quiet. The large teams are the swarm example with its team line
 // changed, written by the test.
@@ -78,6 +78,22 @@ TEST(Progress, APhaseThatReportsNothingIsStillSeenToBeAlive) {
   EXPECT_LE(seconds.front(), 5) << text;
   for (std::size_t i = 1; i < seconds.size(); ++i) EXPECT_LE(seconds[i] - seconds[i - 1], 11) << text;
   EXPECT_GE(repeated, 1) << text;
+}
+
+// Memory running out is a resource limit, said as such (exit 3), not an abort: 100,000 robots
+// (their translation grows with the square of the team) under a 2 GB address-space limit.
+TEST(Progress, ATeamTooLargeForTheMemoryEndsAsALimitNotASignal) {
+  if (SEMO_PROGRESS_SANITIZED) GTEST_SKIP() << "AddressSanitizer reserves more address space than the limit allows";
+  const fs::path dir = workDir("progress_memory");
+  const fs::path mission = swarmOf(100000, dir), err = dir / "stderr.txt";
+  const std::string command = "cd '" SEMO_SOURCE_DIR "' && ulimit -v 2000000 && timeout 120 '" SEMO_VERIFY "' check '" + mission.string() + "'" +
+                              kStrategy + " >/dev/null 2>'" + err.string() + "'";
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 3) << slurp(err);
+  EXPECT_NE(slurp(err).find("semo-verify: error: out of memory: the model is too large for this machine's memory (exit 3)\n"),
+            std::string::npos)
+      << slurp(err);
 }
 
 }  // namespace

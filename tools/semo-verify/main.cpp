@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <new>
 
 #include "commands.hpp"
 
@@ -12,7 +13,9 @@ const CLI::Validator kSeed(
     },
     "SEED");
 
-int main(int argc, char** argv) {
+namespace {
+
+int run(int argc, char** argv) {
   CLI::App app{"semo-verify: check a multi-robot mission (SeMo language) before it is deployed"};
   app.set_version_flag("--version", std::string("semo-verify ") + semo::cli::kToolVersion);
   app.require_subcommand(1);
@@ -364,4 +367,18 @@ int main(int argc, char** argv) {
     return sdfOptions.sdf3.empty() ? semo::cli::runTaskGraphs(sdfOptions) : semo::cli::runSdf(sdfOptions);
   }
   return semo::cli::kBadInput;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Memory running out (a model too large for the machine: a team of tens of thousands of robots
+  // is translated robot pair by robot pair) is a resource limit like --max-memory, said as such,
+  // not an abort.
+  try {
+    return run(argc, argv);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "\nsemo-verify: error: out of memory: the model is too large for this machine's memory (exit 3)\n";
+    return semo::cli::kLimit;
+  }
 }
