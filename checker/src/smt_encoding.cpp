@@ -121,8 +121,20 @@ z3::expr SmtEncoding::truth(const ir::Expr& e, std::size_t k) {
     case Op::Const: return ctx_.bool_val(e.value != 0);
     case Op::Not: return !truth(e.args[0], k);
     case Op::And: case Op::Or: {
+      // A chain of one connective as one n-ary term, whatever its bracketing (the IR holds chains
+      // as balanced trees): the solvers' work depends on the terms' shape.
+      std::vector<const ir::Expr*> operands, work{&e};
+      while (!work.empty()) {
+        const ir::Expr* x = work.back();
+        work.pop_back();
+        if (x->op != e.op) {
+          operands.push_back(x);
+          continue;
+        }
+        for (auto a = x->args.rbegin(); a != x->args.rend(); ++a) work.push_back(&*a);
+      }
       z3::expr_vector parts(ctx_);
-      for (const ir::Expr& a : e.args) parts.push_back(truth(a, k));
+      for (const ir::Expr* a : operands) parts.push_back(truth(*a, k));
       return e.op == Op::And ? z3::mk_and(parts) : z3::mk_or(parts);
     }
     case Op::Implies: return z3::implies(truth(e.args[0], k), truth(e.args[1], k));
