@@ -30,12 +30,13 @@ using rebuild::Concretizer;
 
 constexpr std::uint32_t kMaxRefinements = 32;
 
-// The symbolic searches of one property, all together, may take this long; the last kHuntSeconds
-// of it are kept for the hunt on the property's cone, when no slice decided. Two minutes: scouting's
-// leader_reelection[WatchLight] is proven in its 25th slice (35 variables) after about 60 s of
-// slices alone, 160 s beside mode_agreement, whose symbolic searches take turns with it (one
-// decision-diagram package per process); with one minute it stayed unknown.
-constexpr double kDefaultSymbolicSeconds = 120;
+// The symbolic searches of one property, all together, may take this long (processor time of the
+// searching thread); the last kHuntSeconds of it are kept for the hunt on the property's cone,
+// when no slice decided. Three minutes: scouting's leader_reelection[WatchLight] is proven in its
+// 25th slice (35 variables); that took about 60 s of slices on 2026-11-26, but 132 s of processor
+// time on 2026-11-27 (idle machine, the binaries of both days alike), and with 100 s for the
+// slices it stayed unknown.
+constexpr double kDefaultSymbolicSeconds = 180;
 constexpr double kHuntSeconds = 20;
 
 // SEMO_SYMBOLIC_SECONDS (a developer's knob, checker/README.md) changes that minute, to see how
