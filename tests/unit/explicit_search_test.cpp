@@ -457,6 +457,24 @@ TEST(Symmetry, ALargeClassIsFoundAndItsOrderingsArePrintedAsAPowerOfTen) {
   EXPECT_EQ(reduced.states, 650u);
 }
 
+// Two searches that must report the same: counts, depth, verdicts, counterexamples step by step.
+void expectSameSearch(const SearchResult& a, const SearchResult& b) {
+  EXPECT_EQ(a.states, b.states);
+  EXPECT_EQ(a.transitions, b.transitions);
+  EXPECT_EQ(a.depth, b.depth);
+  EXPECT_EQ(a.complete, b.complete);
+  ASSERT_EQ(a.properties.size(), b.properties.size());
+  for (std::size_t p = 0; p < a.properties.size(); ++p) {
+    EXPECT_EQ(a.properties[p].verdict, b.properties[p].verdict) << a.properties[p].name;
+    ASSERT_EQ(a.properties[p].counterexample.has_value(), b.properties[p].counterexample.has_value()) << a.properties[p].name;
+    if (!a.properties[p].counterexample) continue;
+    const Trace& x = *a.properties[p].counterexample;
+    const Trace& y = *b.properties[p].counterexample;
+    ASSERT_EQ(x.steps.size(), y.steps.size());
+    for (std::size_t k = 0; k < x.steps.size(); ++k) EXPECT_EQ(x.steps[k].rule, y.steps[k].rule) << "step " << k;
+  }
+}
+
 // Six robots that find a fact (one of them, once) or learn it from one that holds it, then count
 // to 2; invariants over the team, one violated. Rules of one robot and of pairs of robots.
 std::string gossipTeam(const std::string& violated) {
@@ -498,20 +516,7 @@ TEST(Symmetry, SkippingTheRulesOfEqualRobotsChangesNoResult) {
       EXPECT_GT(every.states, 20u);
       EXPECT_EQ(every.transitionsSkipped, 0u);
       EXPECT_GT(pruned.transitionsSkipped, every.transitions / 4) << "the rules of equal robots are skipped";
-      EXPECT_EQ(pruned.states, every.states);
-      EXPECT_EQ(pruned.transitions, every.transitions);
-      EXPECT_EQ(pruned.depth, every.depth);
-      EXPECT_EQ(pruned.complete, every.complete);
-      ASSERT_EQ(pruned.properties.size(), every.properties.size());
-      for (std::size_t p = 0; p < every.properties.size(); ++p) {
-        EXPECT_EQ(pruned.properties[p].verdict, every.properties[p].verdict) << every.properties[p].name;
-        ASSERT_EQ(pruned.properties[p].counterexample.has_value(), every.properties[p].counterexample.has_value());
-        if (!every.properties[p].counterexample) continue;
-        const Trace& a = *pruned.properties[p].counterexample;
-        const Trace& b = *every.properties[p].counterexample;
-        ASSERT_EQ(a.steps.size(), b.steps.size());
-        for (std::size_t k = 0; k < a.steps.size(); ++k) EXPECT_EQ(a.steps[k].rule, b.steps[k].rule) << "step " << k;
-      }
+      expectSameSearch(pruned, every);
     }
   }
 }
@@ -566,17 +571,7 @@ TEST(ExplicitSearch, ThreadsChangeNothingButSpeed) {
       one.threads = 1;
       three.threads = 3;
       SearchResult a = checkSafety(m, one), b = checkSafety(m, three);
-      EXPECT_EQ(a.states, b.states);
-      EXPECT_EQ(a.transitions, b.transitions);
-      EXPECT_EQ(a.depth, b.depth);
-      EXPECT_EQ(a.complete, b.complete);
-      ASSERT_EQ(a.properties.size(), b.properties.size());
-      for (std::size_t p = 0; p < a.properties.size(); ++p) {
-        EXPECT_EQ(a.properties[p].verdict, b.properties[p].verdict);
-        if (a.properties[p].counterexample && b.properties[p].counterexample) {
-          EXPECT_EQ(ruleNames(m, *a.properties[p].counterexample), ruleNames(m, *b.properties[p].counterexample));
-        }
-      }
+      expectSameSearch(a, b);
     }
   });
   EXPECT_GE(models, 8u);
