@@ -413,6 +413,7 @@ class SymbolicProduct {
       p.depth = progressRound_;
       p.bytes = static_cast<std::uint64_t>(bdd_getnodenum()) * 20;
       p.seconds = std::chrono::duration<double>(now - started_).count();
+      p.counted = true;
       onProgress_(p);
     }
   }

@@ -8,6 +8,8 @@
 
 #include <fmt/format.h>
 
+#include "commands.hpp"
+
 namespace semo::cli {
 
 namespace {
@@ -53,9 +55,10 @@ void ProgressLine::phase(const std::string& what) {
 void ProgressLine::searched(const checker::Progress& p) {
   if (!enabled_) return;
   const std::lock_guard<std::mutex> hold(lock_);
-  counts_ = fmt::format("{} states, {} states/s, depth {}, {} MiB", p.states,
-                        static_cast<std::uint64_t>(p.seconds > 0 ? static_cast<double>(p.states) / p.seconds : 0.0), p.depth,
-                        p.bytes >> 20);
+  counts_ = p.counted ? fmt::format("{} states (counted, decision diagrams), round {}, {} MiB", withThousands(p.states), p.depth, p.bytes >> 20)
+                      : fmt::format("{} states, {} states/s, depth {}, {} MiB", withThousands(p.states),
+                                    withThousands(static_cast<std::uint64_t>(p.seconds > 0 ? static_cast<double>(p.states) / p.seconds : 0.0)),
+                                    p.depth, p.bytes >> 20);
   const double repeat = terminal_ ? 0.0 : kLogRepeat;
   if (secondsSinceStart() >= kQuietSeconds && secondsSinceStart() - lastPrinted_ >= repeat) {
     printLocked(phase_.empty() ? counts_ : phase_ + ": " + counts_);

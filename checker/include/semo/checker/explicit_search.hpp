@@ -17,6 +17,9 @@ struct Progress {
   std::uint64_t states = 0, transitions = 0, bytes = 0;
   std::uint32_t depth = 0;
   double seconds = 0;
+  // The states are counted in a set held as decision diagrams, not enumerated one by one: a rate
+  // would mean nothing, and the depth is the round of the fixpoint being computed.
+  bool counted = false;
 };
 
 struct SearchLimits {
