@@ -274,17 +274,32 @@ void Translator::livenessProperties() {
       const auto& [team, service] = key;
       const std::vector<Index>& robots = m_.teams[team].robots;
       for (const strategy::Knowledge& k : m_.strategy.services[sites.service].knowledge) {
-        // Again and again, the live members working in the service hold the same facts.
+        // Again and again, the live members working in the service hold the same facts: any two
+        // of them hold as many. Equivalently, some count 0..|facts| is held by every one of them;
+        // that form grows with the team, the pairs with its square, so a team of more than
+        // 2 |facts| + 3 robots gets it (the swarms), a small one the pairs (fewer terms).
+        const std::size_t facts = k.values.size();
         std::vector<Expr> same;
-        for (std::size_t i = 0; i < robots.size(); ++i) {
-          for (std::size_t j = i + 1; j < robots.size(); ++j) {
-            same.push_back(Expr::binary(Op::Implies, ir::conjunction({inService(robots[i], service), inService(robots[j], service)}),
-                                        Expr::binary(Op::Eq, Expr::var(vars_[robots[i]].knows.at(k.name)),
-                                                     Expr::var(vars_[robots[j]].knows.at(k.name)))));
+        if (robots.size() > 2 * facts + 3) {
+          for (std::size_t count = 0; count <= facts; ++count) {
+            std::vector<Expr> holds;
+            for (Index r : robots) {
+              holds.push_back(Expr::binary(Op::Implies, inService(r, service),
+                                           Expr::binary(Op::Eq, Expr::var(vars_[r].knows.at(k.name)), Expr::constant(static_cast<std::int32_t>(count)))));
+            }
+            same.push_back(ir::conjunction(std::move(holds)));
+          }
+        } else {
+          for (std::size_t i = 0; i < robots.size(); ++i) {
+            for (std::size_t j = i + 1; j < robots.size(); ++j) {
+              same.push_back(Expr::binary(Op::Implies, ir::conjunction({inService(robots[i], service), inService(robots[j], service)}),
+                                          Expr::binary(Op::Eq, Expr::var(vars_[robots[i]].knows.at(k.name)),
+                                                       Expr::var(vars_[robots[j]].knows.at(k.name)))));
+            }
           }
         }
-        out_.properties.push_back({"knowledge_convergence[" + service + "." + k.name + "]", "",
-                                   alwaysEventually(ir::conjunction(std::move(same)))});
+        Expr converged = robots.size() > 2 * facts + 3 ? ir::disjunction(std::move(same)) : ir::conjunction(std::move(same));
+        out_.properties.push_back({"knowledge_convergence[" + service + "." + k.name + "]", "", alwaysEventually(std::move(converged))});
       }
     }
   }
