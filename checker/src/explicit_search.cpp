@@ -39,7 +39,8 @@ SearchResult checkSafety(const ir::Model& model, const SearchLimits& limits) {
   std::size_t open = result.properties.size();  // properties not yet violated
 
   if (limits.onPhase && limits.symmetry) limits.onPhase("symmetry: which of the " + std::to_string(model.robots.size()) + " robots are interchangeable");
-  Symmetry symmetry = limits.symmetry ? Symmetry::find(model) : Symmetry();
+  // The LTL properties play no part in this search: robots only they set apart stay interchangeable.
+  Symmetry symmetry = limits.symmetry ? Symmetry::find(model, SymmetryScope::safety()) : Symmetry();
   result.symmetry = symmetry.describe(model);
   if (limits.onPhase) limits.onPhase("safety search");
   const Symmetry* sym = symmetry.empty() ? nullptr : &symmetry;

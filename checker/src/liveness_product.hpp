@@ -56,6 +56,15 @@ inline std::string keyOf(const Permutation& p) {
   return {reinterpret_cast<const char*>(p.data()), p.size() * sizeof(p[0])};
 }
 
+// FNV-1a over the positions: a permutation is looked up as it is, with no key built per lookup.
+struct PermutationHash {
+  std::size_t operator()(const Permutation& p) const noexcept {
+    std::uint64_t h = 1469598103934665603ull;
+    for (std::uint16_t x : p) h = (h ^ x) * 1099511628211ull;
+    return static_cast<std::size_t>(h);
+  }
+};
+
 // The permutations that canonicalised the product's successors, each stored once (0: identity).
 class PermutationTable {
  public:
@@ -67,7 +76,9 @@ class PermutationTable {
   }
   std::uint32_t intern(const Permutation& p) {
     if (isIdentity(p)) return 0;
-    auto [it, added] = ids_.try_emplace(keyOf(p), static_cast<std::uint32_t>(perms_.size()));
+    auto found = ids_.find(p);
+    if (found != ids_.end()) return found->second;
+    auto [it, added] = ids_.try_emplace(p, static_cast<std::uint32_t>(perms_.size()));
     if (added) {
       perms_.push_back(p);
       inverses_.push_back(inverse(p));
@@ -79,7 +90,7 @@ class PermutationTable {
 
  private:
   std::vector<Permutation> perms_, inverses_;
-  std::unordered_map<std::string, std::uint32_t> ids_;
+  std::unordered_map<Permutation, std::uint32_t, PermutationHash> ids_;
 };
 
 // The product of the model with a Büchi automaton, explored breadth-first and kept as a graph.
@@ -209,7 +220,8 @@ class Product {
         why = "--max-memory " + std::to_string(limits.maxMemoryBytes >> 20) + " MiB reached";
         return false;
       }
-      if (limits.onProgress && (i & 0x3fffu) == 0) {
+      // The clock is read every 256 states: a large team's state can take a millisecond to expand.
+      if (limits.onProgress && (i & 0xffu) == 0) {
         double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
         if (elapsed >= nextReport) {
           limits.onProgress({statesBefore + store_.size(), edges_.size(), bytes(), 0, elapsed});

@@ -244,7 +244,7 @@ constexpr std::uint32_t kNoGroup = UINT32_MAX;
 // whole model (a team of 100 robots took 22 s, each swap comparing every rule's text).
 class Finder {
  public:
-  explicit Finder(const ir::Model& m) : m_(m) {
+  Finder(const ir::Model& m, const SymmetryScope& scope) : m_(m), scope_(scope) {
     for (ir::VarId v = 0; v < m.variables.size(); ++v) byName_[m.variables[v].name] = v;
     for (std::size_t r = 0; r < m.robots.size(); ++r) robotIndex_[m.robots[r]] = static_cast<std::int32_t>(r);
     identity_.resize(m.variables.size());
@@ -353,6 +353,7 @@ class Finder {
   }
 
   const ir::Model& m_;
+  const SymmetryScope scope_;
   std::unordered_map<std::string, ir::VarId> byName_;
   std::unordered_map<std::string, std::int32_t> robotIndex_;
 
@@ -360,9 +361,15 @@ class Finder {
   // The invariants, properties and valid end by their forms' numbers: each must map to itself.
   std::vector<std::uint32_t> otherForms(const VarMap& map, bool add) {
     std::vector<std::uint32_t> out;
-    for (const ir::Invariant& inv : m_.invariants) out.push_back(forms_.of(inv.holds, map, add));
-    for (const ir::Property& p : m_.properties) out.push_back(forms_.of(p.formula, map, add));
-    if (m_.validEnd) out.push_back(forms_.of(*m_.validEnd, map, add));
+    if (scope_.invariants) {
+      for (const ir::Invariant& inv : m_.invariants) out.push_back(forms_.of(inv.holds, map, add));
+      if (m_.validEnd) out.push_back(forms_.of(*m_.validEnd, map, add));
+    }
+    if (scope_.properties) {
+      for (const ir::Property& p : m_.properties) out.push_back(forms_.of(p.formula, map, add));
+    } else if (scope_.property) {
+      out.push_back(forms_.of(m_.properties.at(*scope_.property).formula, map, add));
+    }
     return out;
   }
 
@@ -462,10 +469,10 @@ std::string canonicalText(const ir::Expr& e, const VarMap& map) { return canon(e
 
 std::vector<ir::VarId> variablesOf(const ir::Rule& r) { return ruleVariables(r); }
 
-std::vector<FoundClass> findClasses(const ir::Model& model) {
+std::vector<FoundClass> findClasses(const ir::Model& model, const SymmetryScope& scope) {
   std::vector<FoundClass> out;
   if (model.robots.size() < 2) return out;
-  Finder f(model);
+  Finder f(model, scope);
   for (const std::vector<std::int32_t>& candidates : lookalikes(model, f)) {
     // Star transpositions (first r) generate the symmetric group of a class: a robot joins the
     // first class whose first member it can be swapped with.

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "semo/checker/symmetry.hpp"
 #include "semo/semantics/ir.hpp"
 
 namespace semo::checker::detail {
@@ -19,7 +20,7 @@ struct FoundClass {
   std::vector<std::vector<std::uint32_t>> ruleMaps;   // [i - 1]: rule r becomes ruleMaps[i - 1][r]
 };
 
-std::vector<FoundClass> findClasses(const ir::Model& model);
+std::vector<FoundClass> findClasses(const ir::Model& model, const SymmetryScope& scope = {});
 
 // The variables a rule reads or writes.
 std::vector<ir::VarId> variablesOf(const ir::Rule& r);

@@ -11,6 +11,7 @@
 // `image` maps a rule through one, as a product of the verified swaps.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,11 +20,23 @@
 
 namespace semo::checker {
 
+// What a symmetry must leave as it is besides the rules and their fairness: by default everything
+// the model says (its invariants, LTL properties and valid end); a safety search needs only the
+// invariants and the valid end, one LTL property's product only that property. The fewer of them,
+// the more robots may be interchangeable (the swarm's all_turn_back names legged_0).
+struct SymmetryScope {
+  bool invariants = true;     // the invariants and the valid end
+  bool properties = true;     // every LTL property
+  std::optional<std::size_t> property;  // this LTL property (with `properties` false)
+  static SymmetryScope safety() { return {true, false, std::nullopt}; }
+  static SymmetryScope liveness(std::size_t p) { return {false, false, p}; }
+};
+
 class Symmetry {
  public:
   Symmetry() = default;
-  // The interchangeable robots of `model` (none when it has no symmetry, or `enabled` is false).
-  static Symmetry find(const ir::Model& model);
+  // The interchangeable robots of `model` (none when it has no symmetry), for what `scope` names.
+  static Symmetry find(const ir::Model& model, const SymmetryScope& scope = {});
 
   [[nodiscard]] bool empty() const { return classes_.empty(); }
   // One line per class for the report: "burger_0 burger_1 burger_2 (3! = 6 orderings)".
