@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "semo/checker/explicit_search.hpp"
+#include "semo/checker/liveness_search.hpp"
 #include "semo/checker/promela_export.hpp"
 #include "semo/checker/symmetry.hpp"
 #include "semo/checker/trace.hpp"
@@ -455,6 +456,51 @@ TEST(Symmetry, ALargeClassIsFoundAndItsOrderingsArePrintedAsAPowerOfTen) {
   const SearchResult reduced = checkSafety(m, SearchLimits{});
   EXPECT_TRUE(reduced.complete);
   EXPECT_EQ(reduced.states, 650u);
+}
+
+// A property that names one robot sets it apart only where that property is read: the safety
+// search and the other property's product keep all four robots interchangeable.
+TEST(Symmetry, EachSearchSetsApartOnlyTheRobotsWhatItReadsNames) {
+  std::string text = "semo-ir 1;\nrobots r0 r1 r2 r3;\n";
+  std::string sum, all;
+  for (int r = 0; r < 4; ++r) {
+    const std::string n = "r" + std::to_string(r);
+    text += "var " + n + ".c : 0..2 = 0 @robot(" + n + ");\n";
+    text += "rule " + n + ".up @robot(" + n + ") @fair : " + n + ".c < 2 -> " + n + ".c' = " + n + ".c + 1;\n";
+    sum += (sum.empty() ? "" : " + ") + n + ".c";
+    all += (all.empty() ? "" : " && ") + n + ".c == 2";
+  }
+  text += "invariant bounded : " + sum + " <= 8;\n";
+  text += "property first_ends : eventually {r0.c == 2};\n";
+  text += "property all_end : eventually {" + all + "};\n";
+  ir::Model m = parse(text);
+  auto classOf = [&](const SymmetryScope& scope) {
+    const std::vector<std::string> c = Symmetry::find(m, scope).describe(m);
+    return c.size() == 1 ? c[0].substr(0, c[0].find(" (")) : std::string("(") + std::to_string(c.size()) + " classes)";
+  };
+  EXPECT_EQ(classOf({}), "r1 r2 r3");  // the whole model: first_ends names r0
+  EXPECT_EQ(classOf(SymmetryScope::safety()), "r0 r1 r2 r3");
+  EXPECT_EQ(classOf(SymmetryScope::liveness(0)), "r1 r2 r3");
+  EXPECT_EQ(classOf(SymmetryScope::liveness(1)), "r0 r1 r2 r3");
+
+  // Safety: one state per multiset of four counters of 0..2 (C(6, 2) = 15), not 3 * C(5, 2) = 30.
+  const SearchResult safety = checkSafety(m, SearchLimits{});
+  EXPECT_TRUE(safety.complete);
+  EXPECT_EQ(safety.states, 15u);
+  // Liveness: both proven, each product reduced, with the verdicts of the search without symmetry.
+  LivenessOptions whole;
+  whole.slicing = false;
+  const LivenessResult reduced = checkLiveness(m, SearchLimits{}, whole);
+  SearchLimits plain;
+  plain.symmetry = false;
+  const LivenessResult full = checkLiveness(m, plain, whole);
+  ASSERT_EQ(reduced.properties.size(), 2u);
+  EXPECT_EQ(reduced.reducedProperties, 2u);
+  for (std::size_t p = 0; p < 2; ++p) {
+    EXPECT_EQ(reduced.properties[p].verdict, Verdict::Proven) << reduced.properties[p].name;
+    EXPECT_EQ(full.properties[p].verdict, Verdict::Proven) << full.properties[p].name;
+  }
+  EXPECT_LT(reduced.states, full.states);
 }
 
 // Two searches that must report the same: counts, depth, verdicts, counterexamples step by step.

@@ -4,7 +4,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <random>
 
+#include "semo/checker/compiled_model.hpp"
 #include "semo/checker/explicit_search.hpp"
 #include "semo/semantics/ir_text.hpp"
 #include "semo/semantics/load.hpp"
@@ -140,6 +142,112 @@ Team.main { case (SEARCH): default: mode = DONE }
   EXPECT_EQ(learns, 2u * 3u);  // each robot from the other, to 1, 2 or 3 facts
   checker::SearchResult r = checker::checkSafety(*t->model, {});
   EXPECT_TRUE(r.complete);
+}
+
+// The operands of a chain of one connective, whatever its bracketing.
+void flatten(const ir::Expr& e, ir::Op op, std::vector<const ir::Expr*>& out) {
+  if (e.op == op) {
+    for (const ir::Expr& a : e.args) flatten(a, op, out);
+  } else {
+    out.push_back(&e);
+  }
+}
+
+std::size_t nodes(const ir::Expr& e) {
+  std::size_t n = 1;
+  for (const ir::Expr& a : e.args) n += nodes(a);
+  return n;
+}
+
+std::string searchingTeam(int robots) {
+  return "Team: Ev3Robot ev3[" + std::to_string(robots) + R"(]
+Team.Action.Search { searchPaper() }
+Team.SEARCH { set(Action, Search) }
+Team.DONE { set(Action, Search) }
+Team.main { case (SEARCH): default: mode = DONE }
+verify { check knowledge_convergence }
+)";
+}
+
+const ir::Expr& convergenceAtom(const ir::Model& m) {
+  for (const ir::Property& p : m.properties) {
+    if (p.name == "knowledge_convergence[searchPaper.papers]") {
+      // always eventually ATOM
+      return p.formula.args.at(0).args.at(0).atom;
+    }
+  }
+  throw std::runtime_error("no knowledge_convergence");
+}
+
+// A large team's knowledge_convergence says "some count is held by every robot working in the
+// service" (linear in the team), a small team's "any two working robots hold as many" (one term per
+// pair). The two must be the same condition: on random states, the large team's formula agrees with
+// the pairwise one built from its own "working in the service" conditions.
+TEST(Translate, KnowledgeConvergenceOfALargeTeamIsThePairwiseConditionInLinearSize) {
+  auto small = translateText(searchingTeam(3), "converge3");
+  ASSERT_TRUE(small->model.has_value());
+  EXPECT_NE(convergenceAtom(*small->model).op, ir::Op::Or) << "3 robots, 3 facts: the pairs (3 terms) are fewer than 4 counts x 3";
+
+  const int n = 12;  // more than 2 * 3 facts + 3
+  auto large = translateText(searchingTeam(n), "converge12");
+  ASSERT_TRUE(large->model.has_value());
+  const ir::Model& m = *large->model;
+  const ir::Expr& atom = convergenceAtom(m);
+  std::vector<const ir::Expr*> counts;
+  flatten(atom, ir::Op::Or, counts);
+  ASSERT_EQ(counts.size(), 4u);  // 0, 1, 2 or 3 papers
+  std::vector<const ir::Expr*> held;
+  flatten(*counts[0], ir::Op::And, held);
+  ASSERT_EQ(held.size(), static_cast<std::size_t>(n));
+  std::vector<ir::Expr> working, knows;
+  for (const ir::Expr* h : held) {
+    ASSERT_EQ(h->op, ir::Op::Implies);
+    ASSERT_EQ(h->args[1].op, ir::Op::Eq);
+    working.push_back(h->args[0]);
+    knows.push_back(h->args[1].args[0]);
+  }
+  std::vector<ir::Expr> pairs;
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      pairs.push_back(ir::Expr::binary(ir::Op::Implies, ir::conjunction({working[i], working[j]}), ir::Expr::binary(ir::Op::Eq, knows[i], knows[j])));
+    }
+  }
+  const ir::Expr pairwise = ir::conjunction(std::move(pairs));
+  EXPECT_LT(nodes(atom) * 2, nodes(pairwise)) << "linear against quadratic in the team";
+
+  const checker::Program linear(atom), reference(pairwise);
+  std::mt19937 rng(7);
+  std::vector<checker::Value> values(m.variables.size());
+  int agreed = 0, disagreed = 0;
+  for (int sample = 0; sample < 20000; ++sample) {
+    // Each condition of working in the service holds half of the time, so that several robots work
+    // in it at once; every other variable anywhere in its range.
+    for (ir::VarId v = 0; v < m.variables.size(); ++v) {
+      values[v] = std::uniform_int_distribution<checker::Value>(m.variables[v].min, m.variables[v].max)(rng);
+    }
+    // Most robots hold one count, so that the working ones often agree.
+    const checker::Value common = static_cast<checker::Value>(rng() % 4);
+    for (const ir::Expr& k : knows) {
+      if (k.op == ir::Op::Var && rng() % 4 != 0) values[static_cast<std::size_t>(k.value)] = common;
+    }
+    for (const ir::Expr& w : working) {
+      std::vector<const ir::Expr*> parts;
+      flatten(w, ir::Op::And, parts);
+      for (const ir::Expr* c : parts) {
+        if (rng() % 2 == 0) continue;
+        if (c->op == ir::Op::Var) values[static_cast<std::size_t>(c->value)] = 1;
+        if (c->op == ir::Op::Eq && c->args[0].op == ir::Op::Var && c->args[1].op == ir::Op::Const) {
+          values[static_cast<std::size_t>(c->args[0].value)] = c->args[1].value;
+        }
+      }
+    }
+    const checker::Value a = linear.eval(values.data()), b = reference.eval(values.data());
+    ASSERT_EQ(a != 0, b != 0) << "sample " << sample;
+    (a != 0 ? agreed : disagreed) += 1;
+  }
+  // Both outcomes were met often: the comparison is not vacuous.
+  EXPECT_GT(agreed, 500);
+  EXPECT_GT(disagreed, 500);
 }
 
 TEST(Translate, TextFormRoundTripsAndExploresTheSameStates) {
