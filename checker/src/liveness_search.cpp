@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <mutex>
+#include <string>
 #include <thread>
 
 #include "fair_cycle_search.hpp"
@@ -237,19 +239,45 @@ LivenessResult checkLiveness(const ir::Model& model, const SearchLimits& limits,
   const std::size_t workers = std::min<std::size_t>(n, std::max(1u, limits.threads));
   std::vector<Outcome> outcomes(n);
   std::atomic<std::size_t> next{0};
+  // The phases of all workers are said as they come, but the counts are the first worker's: before
+  // its counts, its own phase is said again if another worker's came since (a count of the swarm's
+  // knowledge_convergence shown after "mode_agreement: proven" misled).
+  std::mutex phaseLock;
+  std::string lastPhase, firstWorkersPhase;
   auto work = [&](std::size_t worker) {
     SearchLimits mine = limits;
     mine.maxMemoryBytes = limits.maxMemoryBytes / std::max<std::size_t>(1, workers);
-    if (worker != 0) mine.onProgress = nullptr;
+    if (limits.onPhase) {
+      mine.onPhase = [&, worker](const std::string& what) {
+        const std::lock_guard<std::mutex> hold(phaseLock);
+        lastPhase = what;
+        if (worker == 0) firstWorkersPhase = what;
+        limits.onPhase(what);
+      };
+    }
+    if (worker != 0) {
+      mine.onProgress = nullptr;
+    } else if (limits.onProgress && limits.onPhase) {
+      mine.onProgress = [&](const Progress& p) {
+        {
+          const std::lock_guard<std::mutex> hold(phaseLock);
+          if (lastPhase != firstWorkersPhase) {
+            lastPhase = firstWorkersPhase;
+            limits.onPhase(firstWorkersPhase);
+          }
+        }
+        limits.onProgress(p);
+      };
+    }
     for (std::size_t k = next++; k < n; k = next++) {
       const auto begin = Clock::now();
-      if (limits.onPhase) limits.onPhase("liveness: " + model.properties[k].name + " (" + std::to_string(k + 1) + " of " + std::to_string(n) + "): searching");
+      if (mine.onPhase) mine.onPhase("liveness: " + model.properties[k].name + " (" + std::to_string(k + 1) + " of " + std::to_string(n) + "): searching");
       outcomes[k] = decide(cm, facts, k, mine, options, start, findSymmetry(k));
       outcomes[k].method.seconds = std::chrono::duration<double>(Clock::now() - begin).count();
-      if (limits.onPhase) {
-        limits.onPhase("liveness: " + model.properties[k].name + ": " + verdictName(outcomes[k].property.verdict) + " after " +
-                       std::to_string(static_cast<long long>(outcomes[k].method.seconds)) + " s, " + std::to_string(outcomes[k].states) +
-                       " product states");
+      if (mine.onPhase) {
+        mine.onPhase("liveness: " + model.properties[k].name + ": " + verdictName(outcomes[k].property.verdict) + " after " +
+                     std::to_string(static_cast<long long>(outcomes[k].method.seconds)) + " s, " + std::to_string(outcomes[k].states) +
+                     " product states");
       }
     }
   };
