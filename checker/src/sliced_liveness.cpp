@@ -30,26 +30,12 @@ using rebuild::Concretizer;
 
 constexpr std::uint32_t kMaxRefinements = 32;
 
-// The symbolic searches of one property, all together, may take this long (processor time of the
-// searching thread); the last kHuntSeconds of it are kept for the hunt on the property's cone,
-// when no slice decided. Three minutes: scouting's leader_reelection[WatchLight] is proven in its
-// 25th slice (35 variables); that took about 60 s of slices on 2026-11-26, but 132 s of processor
-// time on 2026-11-27 (idle machine, the binaries of both days alike), and with 100 s for the
-// slices it stayed unknown.
-constexpr double kDefaultSymbolicSeconds = 180;
-constexpr double kHuntSeconds = 20;
-
-// SEMO_SYMBOLIC_SECONDS (a developer's knob, checker/README.md) changes that minute, to see how
-// far more time would take a search.
-double symbolicSecondsPerProperty() {
-  const char* s = std::getenv("SEMO_SYMBOLIC_SECONDS");
-  if (s == nullptr) return kDefaultSymbolicSeconds;
-  const double v = std::atof(s);
-  return v > kHuntSeconds ? v : kDefaultSymbolicSeconds;
-}
+// Of a property's symbolic time (LivenessOptions::symbolicSeconds), the hunt on its cone keeps
+// the last ninth, at most 20 s, for when no slice decided.
+double huntSeconds(double symbolicSeconds) { return std::min(20.0, symbolicSeconds / 9); }
 
 SlicedOutcome refineSlices(const CompiledModel& full, const ControlFacts& facts, std::size_t property, const SearchLimits& limits,
-                           std::uint64_t sliceStates, bool symbolic) {
+                           std::uint64_t sliceStates, bool symbolic, double symbolicBudget) {
   // Slices are cut from the model with the control facts applied (slicing.hpp): the same runs.
   const ir::Model& model = facts.model;
   const ir::Property& prop = model.properties.at(property);
@@ -103,12 +89,13 @@ SlicedOutcome refineSlices(const CompiledModel& full, const ControlFacts& facts,
       if (sliceStates < limits.maxStates && limit.rfind("--max-states", 0) == 0) limit = "--slice-states " + std::to_string(sliceStates) + " reached";
       SymbolicLimits symbolicLimits;
       symbolicLimits.maxMemoryBytes = limits.maxMemoryBytes;
-      symbolicLimits.seconds = symbolicSecondsPerProperty() - kHuntSeconds - symbolicSeconds;
+      const double forSlices = symbolicBudget - huntSeconds(symbolicBudget);
+      symbolicLimits.seconds = forSlices - symbolicSeconds;
       symbolicLimits.onProgress = limits.onProgress;
       const bool affordable = symbolic && symbolicLimits.seconds > 1;
       SymbolicOutcome result = affordable ? decideSymbolically(slice.model, 0, symbolicLimits) : SymbolicOutcome{};
       if (symbolic && !affordable) {
-        result.why = "its time (" + std::to_string(static_cast<int>(symbolicSecondsPerProperty() - kHuntSeconds)) + " s for a property's slices) was spent";
+        result.why = "its time was spent";
       }
       symbolicSeconds += result.seconds;
       out.symbolicSeconds = symbolicSeconds;
@@ -119,8 +106,15 @@ SlicedOutcome refineSlices(const CompiledModel& full, const ControlFacts& facts,
         return out;
       }
       if (result.kind != SymbolicOutcome::Kind::Violation || !result.lasso) {
+        // A search cut by the budget says which budget: the user may give more (or less) of it.
+        const bool outOfTime = !affordable || result.why.find("ran out") != std::string::npos;
         out.why = "the slice of " + std::to_string(slice.variables.size()) + " of " + std::to_string(model.variables.size()) +
-                  " variables did not decide: " + limit + (symbolic ? "; the symbolic search gave up: " + result.why : std::string());
+                  " variables did not decide: " + limit +
+                  (symbolic ? "; the symbolic search gave up: " + result.why +
+                                  (outOfTime ? " (" + std::to_string(static_cast<int>(forSlices)) + " s of --symbolic-seconds " +
+                                                   std::to_string(static_cast<int>(symbolicBudget)) + " for the slices)"
+                                             : std::string())
+                            : std::string());
         return out;
       }
       sliceLasso = std::move(result.lasso);
@@ -197,7 +191,7 @@ void walkForLasso(const CompiledModel& full, std::size_t property, const SearchL
 // crashes and environment steps no fairness asks for, and for a loop that senses nothing (settled
 // on any world): every fair lasso found there is one of the model's, rebuilt on it as a slice's.
 void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLimits& limits, SlicedOutcome& out,
-                const ControlFacts* facts) {
+                const ControlFacts* facts, double symbolicSeconds) {
   const ControlFacts none{{}, {}, 0, 0};
   const ir::Model& model = facts != nullptr ? facts->model : full.model();
   const std::vector<char>& neverFires = facts != nullptr ? facts->neverFires : none.neverFires;
@@ -214,7 +208,7 @@ void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLim
   withoutUnfairEnvironment(cone);
   SymbolicLimits hunt;
   hunt.maxMemoryBytes = limits.maxMemoryBytes;
-  hunt.seconds = symbolicSecondsPerProperty() - out.symbolicSeconds;
+  hunt.seconds = symbolicSeconds - out.symbolicSeconds;
   hunt.onProgress = limits.onProgress;
   hunt.quietLoop = true;
   const SymbolicOutcome r = decideSymbolically(cone.model, 0, hunt);
@@ -239,12 +233,12 @@ void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLim
 }
 
 SlicedOutcome checkSliced(const CompiledModel& full, const ControlFacts& facts, std::size_t property, const SearchLimits& limits,
-                          std::uint64_t sliceStates, bool symbolic, std::optional<std::uint64_t> walkSeed) {
-  SlicedOutcome out = refineSlices(full, facts, property, limits, sliceStates, symbolic);
+                          std::uint64_t sliceStates, bool symbolic, std::optional<std::uint64_t> walkSeed, double symbolicSeconds) {
+  SlicedOutcome out = refineSlices(full, facts, property, limits, sliceStates, symbolic, symbolicSeconds);
   if (walkSeed && out.property.verdict == Verdict::Unknown) walkForLasso(full, property, limits, *walkSeed, out);
   if (symbolic && out.property.verdict == Verdict::Unknown) {
     if (limits.onPhase) limits.onPhase("liveness: " + full.model().properties[property].name + ": no slice decided; hunting the property's cone for a fair loop (symbolically)");
-    huntOnCone(full, property, limits, out, &facts);
+    huntOnCone(full, property, limits, out, &facts, symbolicSeconds);
   }
   return out;
 }

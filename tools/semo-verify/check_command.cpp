@@ -161,6 +161,7 @@ checker::VerifyOptions verifyOptions(const CheckOptions& options, ProgressLine* 
   v.liveness.walks = options.walks;
   v.liveness.walkSeed = options.walkSeed;
   v.liveness.sliceStates = options.sliceStates;
+  v.liveness.symbolicSeconds = options.symbolicSeconds;
   v.limits.threads = options.threads != 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
   v.safetyOnly = options.safetyOnly;
   v.smt.induction = v.smt.ic3 = !options.bmcOnly;

@@ -69,6 +69,10 @@ struct LivenessOptions {
   std::uint64_t sliceStates = 500'000;
   // A slice too large to enumerate is searched as decision diagrams (symbolic_liveness.hpp).
   bool symbolic = true;
+  // The processor time all the symbolic searches of one property may take: its slices, then the
+  // hunt on its cone (the last ninth, at most 20 s). Three minutes: scouting's
+  // leader_reelection[WatchLight] is proven on its 25th slice after 80 to 130 s of them.
+  double symbolicSeconds = 180;
   // When no slice decides, random walks on the whole model hunt a fair violation first
   // (lasso_walks.hpp; at most 10 s), before the symbolic hunt and the round-robin one.
   bool walks = true;
