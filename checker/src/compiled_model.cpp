@@ -266,7 +266,22 @@ void CompiledModel::candidateRules(const Value* values, std::vector<std::uint32_
     out.insert(out.end(), bucket.begin(), bucket.end());
   }
   // Rule order decides which of several shortest counterexamples is reported: keep it stable.
-  std::sort(out.begin(), out.end());
+  // Each rule is in one bucket at most, so ordering them is all there is to do. A few are sorted;
+  // many (a large team: thousands per state of the 10,600 rules of 100 robots, where the sort took
+  // 15 % of the safety search) are marked in a bitmap read back in order.
+  if (out.size() < 256) {
+    std::sort(out.begin(), out.end());
+    return;
+  }
+  thread_local std::vector<std::uint64_t> marks;
+  marks.assign((rules_.size() + 63) / 64, 0);
+  for (std::uint32_t r : out) marks[r >> 6] |= std::uint64_t{1} << (r & 63);
+  out.clear();
+  for (std::size_t w = 0; w < marks.size(); ++w) {
+    for (std::uint64_t bits = marks[w]; bits != 0; bits &= bits - 1) {
+      out.push_back(static_cast<std::uint32_t>(w * 64 + static_cast<std::size_t>(std::countr_zero(bits))));
+    }
+  }
 }
 
 std::vector<Value> CompiledModel::initialValues() const {

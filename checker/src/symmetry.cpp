@@ -46,6 +46,20 @@ Symmetry Symmetry::find(const ir::Model& model, const SymmetryScope& scope) {
     touch->slots.insert(touch->slots.end(), slots.begin(), slots.end());
     touch->start.push_back(static_cast<std::uint32_t>(touch->slots.size()));
   }
+  // The swaps of neighbours, which the safety search asks for per candidate rule (Symmetry::redundant).
+  std::size_t neighbours = 0;
+  for (const Class& k : s.classes_) neighbours += k.robots.size() - 1;
+  if (neighbours * model.rules.size() * sizeof(std::uint32_t) <= (std::size_t{256} << 20)) {
+    s.touch_ = touch;  // swappedWithPrevious composes generators until the tables are filled
+    touch->withPrevious.resize(s.slots_);
+    for (const Class& k : s.classes_) {
+      for (std::size_t p = 1; p < k.robots.size(); ++p) {
+        std::vector<std::uint32_t> map(model.rules.size());
+        for (std::uint32_t r = 0; r < map.size(); ++r) map[r] = s.swappedWithPrevious(r, k.firstSlot + p);
+        touch->withPrevious[k.firstSlot + p] = std::move(map);
+      }
+    }
+  }
   s.touch_ = std::move(touch);
   return s;
 }
@@ -66,6 +80,7 @@ bool Symmetry::equalNeighbours(const Value* values, std::vector<char>& equal) co
 }
 
 std::uint32_t Symmetry::swappedWithPrevious(std::uint32_t rule, std::size_t slot) const {
+  if (slot < touch_->withPrevious.size() && !touch_->withPrevious[slot].empty()) return touch_->withPrevious[slot][rule];
   const Class& c = classes_[touch_->slotClass[slot]];
   const std::size_t b = touch_->slotPosition[slot], a = b - 1;
   // The generators swap position 0 with position i; (a b) is (0 a)(0 b)(0 a), or (0 b) for a = 0.

@@ -4,6 +4,7 @@
 
 #include <cstdlib>
 
+#include "semo/checker/compiled_model.hpp"
 #include "semo/checker/explicit_search.hpp"
 #include "semo/checker/promela_export.hpp"
 #include "semo/checker/symmetry.hpp"
@@ -306,6 +307,29 @@ invariant zero : b == 0 || b == 2 && (q == 0 && r == 0 || q == -3 && r == -1);
 }
 
 // ---- the Promela export: names, types and arithmetic as SPIN needs them
+
+// The rules offered in a state come in rule order whether there are few (sorted) or many (read
+// back from a bitmap): 600 rules, a third needing pc == 0, a third pc == 1, the rest untriggered,
+// interleaved.
+TEST(ExplicitSearch, CandidateRulesAscendWhateverTheirNumber) {
+  std::string text = "semo-ir 1;\nvar pc : 0..1 = 0;\nvar n : 0..1 = 0;\n";
+  for (int r = 0; r < 600; ++r) {
+    const std::string guard = r % 3 == 0 ? "pc == 0" : r % 3 == 1 ? "pc == 1" : "n < 2";
+    text += "rule r" + std::to_string(r) + " : " + guard + " -> n' = 0;\n";
+  }
+  ir::Model m = parse(text);
+  CompiledModel cm(m);
+  for (Value pc : {0, 1}) {
+    std::vector<Value> values{pc, 0};
+    std::vector<std::uint32_t> offered;
+    cm.candidateRules(values.data(), offered);
+    std::vector<std::uint32_t> expected;
+    for (std::uint32_t r = 0; r < 600; ++r) {
+      if (r % 3 == 2 || static_cast<Value>(r % 3) == pc) expected.push_back(r);
+    }
+    EXPECT_EQ(offered, expected) << "pc == " << pc;
+  }
+}
 
 TEST(PromelaExport, MangledNamesTypesAndTotalDivision) {
   ir::Model m = parse(R"(semo-ir 1;

@@ -90,6 +90,10 @@ class Symmetry {
   struct Touch {
     std::vector<std::uint32_t> start, slots;
     std::vector<std::uint32_t> slotClass, slotPosition;
+    // Per slot, the rules under the swap with the slot before (rules.size() entries per slot, the
+    // first slot of a class empty): one lookup where composing generators takes three. Left empty
+    // when it would take more than 256 MB (then composed).
+    std::vector<std::vector<std::uint32_t>> withPrevious;
   };
   std::vector<Class> classes_;
   std::shared_ptr<const std::vector<Swap>> swaps_;
