@@ -6,19 +6,6 @@ namespace semo::checker {
 
 namespace {
 
-// The variables an expression reads (an explicit stack: guards may be deep).
-std::vector<char> readsOf(const ir::Expr& root, std::size_t variables) {
-  std::vector<char> reads(variables, 0);
-  std::vector<const ir::Expr*> todo{&root};
-  while (!todo.empty()) {
-    const ir::Expr* e = todo.back();
-    todo.pop_back();
-    if (e->op == ir::Op::Var && static_cast<std::size_t>(e->value) < variables) reads[static_cast<std::size_t>(e->value)] = 1;
-    for (const ir::Expr& a : e->args) todo.push_back(&a);
-  }
-  return reads;
-}
-
 // The knowledge item a count belongs to: its name without the robot's ("ev3_0.knows.papers" ->
 // ".knows.papers"), so that the robots' counts of one item are found together.
 std::string itemOf(const ir::Model& m, const ir::Variable& v) {
@@ -46,7 +33,6 @@ KnowledgeWitness knowledgeWitness(const ir::Model& m, const Trace& t) {
   for (std::size_t i = 0; i < t.steps.size(); ++i) {
     const Step& s = t.steps[i];
     out.held[i].resize(s.changes.size());
-    std::vector<char> reads;
     for (std::size_t j = 0; j < s.changes.size(); ++j) {
       const Change& c = s.changes[j];
       if (c.var >= m.variables.size() || held[c.var].empty()) continue;
@@ -58,12 +44,22 @@ KnowledgeWitness knowledgeWitness(const ir::Model& m, const Trace& t) {
         std::int32_t kept = 0;
         for (char& h : mine) h = h != 0 && kept < c.after ? (++kept, 1) : 0;
       } else if (c.after > c.before) {
-        if (reads.empty() && s.rule < m.rules.size()) reads = readsOf(m.rules[s.rule].guard, m.variables.size());
-        // The teacher: another robot's count of the same item that the step's guard reads.
+        const auto wanted = static_cast<std::size_t>(c.after - c.before);
         const std::vector<ir::VarId>& counts = items[itemOf(m, var)];
+        // A gossip step (a delivery) names no teacher: the first other robot that holds at most
+        // as many facts as the learner ends with and enough it lacks (a crashed one holds none).
         const std::vector<char>* teacher = nullptr;
-        for (ir::VarId other : counts) {
-          if (other != c.var && other < reads.size() && reads[other] != 0) teacher = &held[other];
+        if (s.rule < m.rules.size() && m.rules[s.rule].kind == ir::RuleKind::Delivery) {
+          for (ir::VarId other : counts) {
+            if (other == c.var || teacher != nullptr) continue;
+            std::size_t theirs = 0, lacking = 0;
+            for (std::size_t f = 0; f < facts; ++f) {
+              theirs += held[other][f] != 0 ? 1 : 0;
+              lacking += held[other][f] != 0 && mine[f] == 0 ? 1 : 0;
+            }
+            if (theirs <= static_cast<std::size_t>(c.after) && lacking >= wanted) teacher = &held[other];
+          }
+          if (teacher == nullptr) return {};
         }
         std::vector<std::size_t> candidates;
         if (teacher != nullptr) {
@@ -79,7 +75,6 @@ KnowledgeWitness knowledgeWitness(const ir::Model& m, const Trace& t) {
             }
           }
         }
-        const auto wanted = static_cast<std::size_t>(c.after - c.before);
         if (candidates.size() < wanted) return {};
         for (std::size_t k = 0; k < wanted; ++k) mine[candidates[k]] = 1;
       }

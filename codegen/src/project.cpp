@@ -228,7 +228,7 @@ void Projector::robots() {
     for (Id k = 0; k < out_.knowledge.size(); ++k) {
       if (out_.knowledge[k].team != robot.team) continue;
       out.knowledge.push_back(k);
-      out.learnRule.emplace_back(team.robots.size() * (out_.knowledge[k].facts.size() + 1), kNone);
+      out.learnRule.emplace_back(out_.knowledge[k].facts.size() + 1, kNone);
     }
     out_.robots.push_back(std::move(out));
     plans(r);
@@ -255,8 +255,7 @@ void Projector::networkRules() {
       case MeaningKind::Learn: {
         Id k = knowledgeItem(m_.robots[m.robot].team, m.knowledge);
         auto slot = std::find(robot->knowledge.begin(), robot->knowledge.end(), k) - robot->knowledge.begin();
-        std::size_t facts = out_.knowledge[k].facts.size();
-        robot->learnRule[slot][m_.robots[m.peer].indexInTeam * (facts + 1) + static_cast<std::size_t>(m.count)] = i;
+        robot->learnRule[slot][static_cast<std::size_t>(m.count)] = i;
         break;
       }
       case MeaningKind::EventDelivery: robot->eventDeliveryRule[m.index] = i; break;
@@ -296,7 +295,8 @@ void Projector::abstraction() {
     out.init = t_.model.variables[v].init;
     out.name = t_.model.variables[v].name;
     if (role.kind == RoleKind::Leads || role.kind == RoleKind::Silence || role.kind == RoleKind::LostHeartbeats) out.index = leaderIndex_[role.index];
-    if (role.kind == RoleKind::Knows) out.index = knowledgeItem(role.team, role.knowledge);
+    if (role.kind == RoleKind::Knows || role.kind == RoleKind::Holding) out.index = knowledgeItem(role.team, role.knowledge);
+    out.values = role.values;
     out_.abstraction.push_back(std::move(out));
   }
 }

@@ -42,7 +42,7 @@ SEMO_ENUM(GuardRow::Kind, "GuardRow::Kind", "InMode", "ChannelSpace", "ChannelDa
           "NotElected", "Goal")
 SEMO_ENUM(EffectRow::Kind, "EffectRow::Kind", "Throw", "EnterMode", "Publish", "Send", "Receive", "Elect", "JoinArm", "LeaveBlock")
 SEMO_ENUM(AbstractVar::Kind, "AbstractVar::Kind", "Alive", "Crashed", "Mode", "Pc", "Event", "View", "Message", "Channel", "Leads",
-          "Silence", "LostHeartbeats", "Knows")
+          "Silence", "LostHeartbeats", "Knows", "Holding", "AtPoints")
 SEMO_ENUM(DataflowTask::Kind, "DataflowTask::Kind", "Service", "Sensing", "Control", "Communication", "Knowledge", "LeaderElection")
 #undef SEMO_ENUM
 
@@ -152,7 +152,7 @@ template <class V> void describe(V& v, RobotTable& x) {
 }
 template <class V> void describe(V& v, AbstractVar& x) {
   v.field("kind", x.kind), v.field("robot", x.robot), v.field("team", x.team), v.field("index", x.index), v.field("init", x.init),
-      v.field("name", x.name);
+      v.field("values", x.values), v.field("name", x.name);
 }
 template <class V> void describe(V& v, RuleInfo& x) {
   v.field("name", x.name), v.field("label", x.label), v.field("origin", x.origin), v.field("robot", x.robot);

@@ -165,6 +165,7 @@ class Team {
 
   // ---- team_abstraction.cpp
   void abstractState(std::vector<std::int32_t>& out) const;
+  [[nodiscard]] std::int32_t teamCount(const AbstractVar& var) const;
   // A step of the model: `rules` (IR rule indices; empty: a stutter) taken by `robot`.
   void step(Id robot, std::vector<Id> rules, std::string what, std::string origin = {});
   void beginStep();

@@ -22,6 +22,10 @@ void Team::abstractState(std::vector<std::int32_t>& out) const {
       out[v] = channel_[var.index];
       continue;
     }
+    if (var.kind == K::Holding || var.kind == K::AtPoints) {  // a count of the team's live robots
+      out[v] = teamCount(var);
+      continue;
+    }
     const RobotRun& r = robots_[var.robot];
     if (var.kind == K::Alive) {
       out[v] = r.alive ? 1 : 0;
@@ -43,9 +47,33 @@ void Team::abstractState(std::vector<std::int32_t>& out) const {
       case K::LostHeartbeats: out[v] = r.lostRun[var.index]; break;
       case K::Knows: out[v] = r.knowledge[static_cast<std::size_t>(varSlot_[v])].count(); break;
       case K::Alive:
-      case K::Crashed: break;
+      case K::Crashed:
+      case K::Holding:
+      case K::AtPoints: break;
     }
   }
+}
+
+// How many live robots of the count's team hold a counted number of facts of its item, or have
+// their pc of its plan at a counted point. A networked robot counts the peers as it sees them.
+std::int32_t Team::teamCount(const AbstractVar& var) const {
+  std::int32_t n = 0;
+  for (Id robot : t_.teams[var.team].robots) {
+    const RobotRun& r = robots_[robot];
+    if (!r.alive) continue;
+    std::int32_t value = 0;
+    if (var.kind == AbstractVar::Kind::AtPoints) {
+      if (var.index >= r.plans.size()) continue;
+      value = static_cast<std::int32_t>(r.plans[var.index].pc);
+    } else {
+      const std::vector<Id>& items = t_.robots[robot].knowledge;
+      const auto slot = static_cast<std::size_t>(std::find(items.begin(), items.end(), var.index) - items.begin());
+      if (slot >= items.size()) continue;
+      value = r.knowledge[slot].count();
+    }
+    if (std::binary_search(var.values.begin(), var.values.end(), value)) ++n;
+  }
+  return n;
 }
 
 void Team::beginStep() { abstractState(before_); }

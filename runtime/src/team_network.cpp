@@ -276,7 +276,7 @@ bool Team::learnFrom(Id q, Id sender, Id k) {
   for (std::size_t f = 0; f < had.size(); ++f) {
     if (had[f] == 0 && r.knowledge[slot].holds(static_cast<std::uint32_t>(f))) learnt += (learnt.empty() ? "" : ", ") + item.facts[f];
   }
-  const Id rule = t_.robots[q].learnRule[slot][t_.robots[sender].indexInTeam * (item.facts.size() + 1) + static_cast<std::size_t>(after)];
+  const Id rule = t_.robots[q].learnRule[slot][static_cast<std::size_t>(after)];
   note(q, TraceEvent::Kind::Fact, "learns " + item.name + " from " + t_.robots[sender].name + ": " + learnt, item.name, sender);
   step(q, rule == kNone ? std::vector<Id>{} : std::vector<Id>{rule}, rule == kNone ? "learns " + item.name : t_.rules[rule].label,
        rule == kNone ? std::string() : t_.rules[rule].origin);

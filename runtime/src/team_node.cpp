@@ -141,8 +141,7 @@ void Team::onPacket(const Packet& p) {
       beginStep();
       if (!me.knowledge[slot].mergeFact(static_cast<std::uint32_t>(p.value), {p.word, p.aux}, me.lamport)) return;
       const std::size_t count = static_cast<std::size_t>(me.knowledge[slot].count());
-      const std::size_t teacher = t_.robots[p.sender].indexInTeam * (item.facts.size() + 1) + count;
-      const Id rule = teacher < t_.robots[self].learnRule[slot].size() ? t_.robots[self].learnRule[slot][teacher] : kNone;
+      const Id rule = count < t_.robots[self].learnRule[slot].size() ? t_.robots[self].learnRule[slot][count] : kNone;
       const std::string fact = p.value >= 0 && static_cast<std::size_t>(p.value) < item.facts.size() ? item.facts[static_cast<std::size_t>(p.value)] : std::to_string(p.value);
       note(self, TraceEvent::Kind::Fact, "learns " + item.name + " from " + t_.robots[p.sender].name + ": " + fact, item.name, p.sender);
       step(self, rule == kNone ? std::vector<Id>{} : std::vector<Id>{rule}, rule == kNone ? "learns " + item.name : t_.rules[rule].label,

@@ -41,9 +41,8 @@ std::vector<RuleSite> ruleSites(const MissionTables& t) {
       if (RuleSite* s = at(r.discoverRules[d].rule)) *s = {K::Discover, robot, r.discoverRules[d].plan, d, 0, 0};
     }
     for (Id slot = 0; slot < r.learnRule.size(); ++slot) {
-      const std::size_t facts = t.knowledge[r.knowledge[slot]].facts.size() + 1;
-      for (std::size_t i = 0; i < r.learnRule[slot].size(); ++i) {
-        if (RuleSite* s = at(r.learnRule[slot][i])) *s = {K::Learn, robot, kNone, slot, i / facts, static_cast<std::int64_t>(i % facts)};
+      for (std::size_t n = 0; n < r.learnRule[slot].size(); ++n) {
+        if (RuleSite* s = at(r.learnRule[slot][n])) *s = {K::Learn, robot, kNone, slot, 0, static_cast<std::int64_t>(n)};
       }
     }
   }
@@ -133,14 +132,27 @@ std::string Team::forceStep(Id rule, const RuleSite& site) {
       return "it already holds every fact of " + item.name;
     }
     case K::Learn: {
+      // The model's rule says how many facts the learner holds after, not from whom: the first
+      // live teammate whose facts merged with the learner's make exactly that many teaches it.
       const Id k = table->knowledge[site.index];
-      const std::vector<Id>& members = t_.teams[t_.knowledge[k].team].robots;
-      if (site.extra >= members.size()) return "no such teacher";
-      const Id teacher = members[site.extra];
-      if (!robots_[teacher].alive) return t_.robots[teacher].name + " (the teacher) has crashed";
       if (!inService(site.robot, k)) return "it does not work in the service";
-      if (!learnFrom(site.robot, teacher, k)) return "it learns nothing new from " + t_.robots[teacher].name;
-      return {};
+      const std::size_t slot = site.index;
+      const KnowledgeStore& mine = robots_[site.robot].knowledge[slot];
+      for (Id teacher : t_.teams[t_.knowledge[k].team].robots) {
+        if (teacher == site.robot || !robots_[teacher].alive) continue;
+        const std::vector<Id>& theirItems = t_.robots[teacher].knowledge;
+        const auto from = static_cast<std::size_t>(std::find(theirItems.begin(), theirItems.end(), k) - theirItems.begin());
+        if (from >= theirItems.size()) continue;
+        std::int64_t merged = 0;
+        for (std::uint32_t f = 0; f < t_.knowledge[k].facts.size(); ++f) {
+          merged += mine.holds(f) || robots_[teacher].knowledge[from].holds(f) ? 1 : 0;
+        }
+        if (merged == site.count) {
+          learnFrom(site.robot, teacher, k);
+          return {};
+        }
+      }
+      return "no live teammate holds the facts that would bring it to " + std::to_string(site.count);
     }
     case K::Heartbeat: {
       const LeaderBlockTable& l = t_.leaderBlocks[site.index];

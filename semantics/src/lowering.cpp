@@ -16,6 +16,8 @@ const char* roleName(VariableRole::Kind kind) {
     case VariableRole::Kind::Silence: return "silence";
     case VariableRole::Kind::LostHeartbeats: return "lost";
     case VariableRole::Kind::Knows: return "knows";
+    case VariableRole::Kind::Holding: return "holding";
+    case VariableRole::Kind::AtPoints: return "at points";
   }
   return "?";
 }

@@ -14,7 +14,16 @@ void Translator::blockExitRules(Index robot, std::size_t planIndex, std::size_t 
     if (b.exit == at) range = &b;
   }
   Path path;
+  if (counted(team)) {  // a large team: how many robots are inside, this one not counted
+    std::vector<std::int32_t> inside;
+    for (std::size_t i = range->first + 1; i < range->last; ++i) inside.push_back(static_cast<std::int32_t>(i));
+    if (!inside.empty()) {
+      ir::VarId count = teamCount(team, VariableRole::Kind::AtPoints, planIndex, {}, inside);
+      path.guard.push_back(eq(othersCounted(count, robot, Expr::constant(static_cast<std::int32_t>(at))), 0));
+    }
+  }
   for (Index q : m_.teams[team].robots) {
+    if (counted(team)) break;
     if (q == robot || !vars_[q].pc[planIndex]) continue;
     Expr pc = Expr::var(*vars_[q].pc[planIndex]);
     Expr inside = ir::conjunction({Expr::binary(Op::Gt, pc, Expr::constant(static_cast<std::int32_t>(range->first))),
@@ -38,7 +47,7 @@ void Translator::blockExitRules(Index robot, std::size_t planIndex, std::size_t 
 // Synchronised start (the paper's group semantics): a robot starts working in a group service
 // only when no other live robot running the same service is still on its way to the block or
 // forming it; those already in an arm, or elsewhere, do not hold it up.
-Expr Translator::groupStarted(Index robot, std::size_t planIndex, std::size_t at, std::vector<std::size_t>* pcs) const {
+Expr Translator::groupStarted(Index robot, std::size_t planIndex, std::size_t at, std::vector<std::size_t>* pcs) {
   const PlanProgram& prog = programs_[m_.robots[robot].team][planIndex];
   const Index service = prog.code[at].service;
   std::vector<Expr> ready;
@@ -49,7 +58,15 @@ Expr Translator::groupStarted(Index robot, std::size_t planIndex, std::size_t at
       if (prog.code[i].service == service && prog.code[i].controlPoint && (i < range.first || i >= range.last)) before.push_back(i);
     }
     if (pcs != nullptr) pcs->insert(pcs->end(), before.begin(), before.end());
-    for (Index q : m_.teams[m_.robots[robot].team].robots) {
+    const Index team = m_.robots[robot].team;
+    if (counted(team)) {  // a large team: how many robots are not there yet, this one not counted
+      if (before.empty()) continue;
+      std::vector<std::int32_t> values(before.begin(), before.end());
+      ir::VarId count = teamCount(team, VariableRole::Kind::AtPoints, planIndex, {}, values);
+      ready.push_back(eq(othersCounted(count, robot, Expr::constant(static_cast<std::int32_t>(at))), 0));
+      continue;
+    }
+    for (Index q : m_.teams[team].robots) {
       if (q == robot || !vars_[q].pc[planIndex]) continue;
       Expr pc = Expr::var(*vars_[q].pc[planIndex]);
       std::vector<Expr> notYet;

@@ -19,45 +19,60 @@ Expr Translator::inService(Index robot, const std::string& service) const {
 
 // Gossip: a robot working in a group service learns the facts another live robot of its team holds. With facts
 // counted, the merge of q's c_q facts with r's c_r facts holds between max(c_q, c_r) and
-// min(|facts|, c_q + c_r) facts: every such count is a possible outcome (one rule each). A lost
-// gossip message is a merge that has not happened yet, so loss needs no rule of its own.
+// min(|facts|, c_q + c_r) facts: every such count is a possible outcome. One rule per learner and
+// count reached, enabled when some live teammate can teach it that (a large team reads the counts
+// of robots holding each number of facts, translate_counts.cpp). Weak fairness per rule means the
+// same as per teacher: counts never decrease but by a crash, so within a cycle of states every
+// teacher's merge is enabled exactly when the learner works in the service. A lost gossip
+// message is a merge that has not happened yet, so loss needs no rule of its own.
 void Translator::knowledgeRules() {
   for (const auto& [key, sites] : sites_) {
     const auto& [team, service] = key;
     const strategy::Service& sv = m_.strategy.services[sites.service];
     if (sv.dissemination && sv.dissemination->via == "none") continue;  // nothing is shared: nothing is learnt
     for (Index q : m_.teams[team].robots) {
-      for (Index r : m_.teams[team].robots) {
-        if (q == r) continue;
-        for (const strategy::Knowledge& k : sv.knowledge) {
-          Expr mine = Expr::var(vars_[q].knows.at(k.name)), theirs = Expr::var(vars_[r].knows.at(k.name));
-          for (std::int32_t n = 1; n <= static_cast<std::int32_t>(k.values.size()); ++n) {
-            ir::Rule learn;
-            learn.name = m_.robots[q].name + ".learns." + k.name + ".from." + m_.robots[r].name + "." + std::to_string(n);
-            learn.robot = static_cast<std::int32_t>(q);
-            learn.kind = ir::RuleKind::Delivery;
-            learn.label = "learns " + k.name + " from " + m_.robots[r].name + " (now holds " + std::to_string(n) + ")";
-            // The teacher need not be working in the service any more: a robot keeps answering
-            // gossip about what it knows after its own part of the service is over.
-            learn.guard = ir::conjunction({inService(q, service), alive(r),
-                                           Expr::binary(Op::Lt, mine, Expr::constant(n)),
-                                           Expr::binary(Op::Ge, Expr::constant(n), theirs),
-                                           Expr::binary(Op::Le, Expr::constant(n), Expr::binary(Op::Add, mine, theirs))});
-            learn.branches.push_back({1.0, {{vars_[q].knows.at(k.name), Expr::constant(n)}}});
-            // Under unfair loss every broadcast gossip message may be lost: a merge may never
-            // happen. Reliable dissemination resends until acknowledged.
-            bool reliable = sv.dissemination && sv.dissemination->via == "reliable";
-            learn.weaklyFair = !loseKnowledge_ || fairLoss_ || reliable;
-            learn.origin = origin(sv.dissemination ? sv.dissemination->at : sv.at, "dissemination");
-            RuleMeaning meaning;
-            meaning.kind = RuleMeaning::Kind::Learn;
-            meaning.robot = q;
-            meaning.peer = r;
-            meaning.service = sv.name;
-            meaning.knowledge = k.name;
-            meaning.count = n;
-            addRule(std::move(learn), std::move(meaning));
+      for (const strategy::Knowledge& k : sv.knowledge) {
+        Expr mine = Expr::var(vars_[q].knows.at(k.name));
+        for (std::int32_t n = 1; n <= static_cast<std::int32_t>(k.values.size()); ++n) {
+          std::vector<Expr> teachers;
+          if (counted(team)) {  // some other live robot holds c facts, with c <= n <= mine + c
+            for (std::int32_t c = 1; c <= n; ++c) {
+              Expr others = othersCounted(teamCount(team, VariableRole::Kind::Holding, 0, k.name, {c}), q, mine);
+              Expr some = Expr::binary(Op::Gt, std::move(others), Expr::constant(0));
+              teachers.push_back(c == n ? std::move(some)
+                                        : ir::conjunction({Expr::binary(Op::Ge, Expr::binary(Op::Add, mine, Expr::constant(c)), Expr::constant(n)),
+                                                           std::move(some)}));
+            }
+          } else {
+            for (Index r : m_.teams[team].robots) {
+              if (r == q) continue;
+              Expr theirs = Expr::var(vars_[r].knows.at(k.name));
+              teachers.push_back(ir::conjunction({alive(r), Expr::binary(Op::Ge, Expr::constant(n), theirs),
+                                                  Expr::binary(Op::Le, Expr::constant(n), Expr::binary(Op::Add, mine, theirs))}));
+            }
           }
+          ir::Rule learn;
+          learn.name = m_.robots[q].name + ".learns." + k.name + "." + std::to_string(n);
+          learn.robot = static_cast<std::int32_t>(q);
+          learn.kind = ir::RuleKind::Delivery;
+          learn.label = "learns " + k.name + " from a teammate (now holds " + std::to_string(n) + ")";
+          // The teacher need not be working in the service any more: a robot keeps answering
+          // gossip about what it knows after its own part of the service is over.
+          learn.guard = ir::conjunction({inService(q, service), Expr::binary(Op::Lt, mine, Expr::constant(n)),
+                                         ir::disjunction(std::move(teachers))});
+          learn.branches.push_back({1.0, {{vars_[q].knows.at(k.name), Expr::constant(n)}}});
+          // Under unfair loss every broadcast gossip message may be lost: a merge may never
+          // happen. Reliable dissemination resends until acknowledged.
+          bool reliable = sv.dissemination && sv.dissemination->via == "reliable";
+          learn.weaklyFair = !loseKnowledge_ || fairLoss_ || reliable;
+          learn.origin = origin(sv.dissemination ? sv.dissemination->at : sv.at, "dissemination");
+          RuleMeaning meaning;
+          meaning.kind = RuleMeaning::Kind::Learn;
+          meaning.robot = q;
+          meaning.service = sv.name;
+          meaning.knowledge = k.name;
+          meaning.count = n;
+          addRule(std::move(learn), std::move(meaning));
         }
       }
     }
@@ -155,6 +170,10 @@ void Translator::messageRules() {
 }
 
 void Translator::crashRules() {
+  std::vector<std::vector<ir::VarId>> own(m_.robots.size());  // each robot's variables
+  for (ir::VarId var = 0; var < out_.variables.size(); ++var) {
+    if (out_.variables[var].robot != ir::kNoRobot) own[static_cast<std::size_t>(out_.variables[var].robot)].push_back(var);
+  }
   for (Index r = 0; r < m_.robots.size(); ++r) {
     Index team = m_.robots[r].team;
     if (!vars_[r].alive) continue;
@@ -169,9 +188,8 @@ void Translator::crashRules() {
     ir::Branch branch{1.0, {{*vars_[r].alive, Expr::constant(0)}, {crashed, Expr::binary(Op::Add, Expr::var(crashed), Expr::constant(1))}}};
     // A crashed robot's other variables are never read again (its rules are off, and properties
     // speak of live robots): clear them, so that where it crashed does not multiply the states.
-    for (ir::VarId var = 0; var < out_.variables.size(); ++var) {
-      const ir::Variable& v = out_.variables[var];
-      if (v.robot == static_cast<std::int32_t>(r) && var != *vars_[r].alive) branch.assignments.push_back({var, Expr::constant(v.init)});
+    for (ir::VarId var : own[r]) {
+      if (var != *vars_[r].alive) branch.assignments.push_back({var, Expr::constant(out_.variables[var].init)});
     }
     crash.branches.push_back(std::move(branch));
     crash.origin.construct = "crash";  // no position: a crash can happen anywhere
@@ -419,6 +437,7 @@ std::optional<Translation> Translator::run() {
   crashRules();
   leaderRules();
   defaultRules();
+  maintainCounts();
   invariants();
   livenessProperties();
   lowering_.programs = programs_;

@@ -4,6 +4,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <tuple>
 
 #include "semo/semantics/lowering.hpp"
 #include "semo/semantics/robot_program.hpp"
@@ -78,11 +79,22 @@ class Translator {
   void finish(Index robot, std::size_t planIndex, std::size_t start, std::size_t target, Path path);
   void effect(Index robot, std::size_t planIndex, const Instr& in, Path& path, std::vector<Path>& out);
   void knowledgeRules();
+  // Counts of a large team (translate_counts.cpp).
+  [[nodiscard]] bool counted(Index team) const { return m_.teams[team].robots.size() > options_.countTeamsAbove; }
+  // The variable counting the live robots of `team` whose `role` variable (knows `knowledge`, or
+  // the pc of `planIndex`) is one of `values`; made on first use.
+  ir::VarId teamCount(Index team, VariableRole::Kind role, std::size_t planIndex, const std::string& knowledge,
+                      std::vector<std::int32_t> values);
+  // How many of the counted robots other than `robot` there are, given that `robot` is alive and
+  // its counted variable is `own` (an expression, or a constant when the caller knows it).
+  [[nodiscard]] Expr othersCounted(ir::VarId count, Index robot, Expr own) const;
+  // Every rule that changes a counted variable or a counted robot's `alive` updates the count.
+  void maintainCounts();
   void groupServiceRules(Index robot, std::size_t planIndex, std::size_t at);
   void blockExitRules(Index robot, std::size_t planIndex, std::size_t at);
   // The synchronised start of the group service at `at`; `pcs` (if given) receives the program
   // points another robot must not be at.
-  [[nodiscard]] Expr groupStarted(Index robot, std::size_t planIndex, std::size_t at, std::vector<std::size_t>* pcs = nullptr) const;
+  [[nodiscard]] Expr groupStarted(Index robot, std::size_t planIndex, std::size_t at, std::vector<std::size_t>* pcs = nullptr);
   [[nodiscard]] Expr inService(Index robot, const std::string& service) const;
   void eventRules();
   void messageRules();
@@ -148,6 +160,16 @@ class Translator {
   bool losePublish_ = false, loseEvents_ = false, loseHeartbeats_ = false, loseKnowledge_ = false;
   bool fairLoss_ = false;
   std::size_t rulesPerPoint_ = 0;
+  struct TeamCount {
+    ir::VarId var;
+    Index team;
+    std::vector<std::optional<ir::VarId>> of;  // per robot of the team (in its order): the variable counted
+    std::vector<std::int32_t> values;           // ascending
+  };
+  std::vector<TeamCount> counts_;
+  using CountKey = std::tuple<Index, VariableRole::Kind, std::size_t, std::string, std::vector<std::int32_t>>;
+  std::map<CountKey, ir::VarId> countIndex_;
+  [[nodiscard]] const TeamCount& countOf(ir::VarId var) const;
 };
 
 }  // namespace semo::detail

@@ -34,11 +34,12 @@ TEST(Progress, AQuickCheckPrintsNothingOnStderr) {
 
 TEST(Progress, ALargeModelSaysItsSizeAndWhatItWillTryBeforeTheSearch) {
   const fs::path dir = workDir("progress_large");
-  const fs::path mission = swarmOf(100, dir);
+  const fs::path mission = swarmOf(1000, dir);
   CliRun r = verify("check '" + mission.string() + "'" + kStrategy + " --no-symmetry --safety-only --max-states 100", dir);
   EXPECT_EQ(r.exit, 3) << r.err;  // partial: the search stopped at 100 states
   // The first line, before any phase: robots, variables and rules counted, with thousands separated.
-  EXPECT_TRUE(std::regex_search(r.err, std::regex(R"(^model: 100 robots, [0-9,]+ variables, [0-9]{1,3}(,[0-9]{3})+ rules; 1 invariant and deadlock freedom, 0 LTL properties\n)")))
+  EXPECT_TRUE(std::regex_search(
+      r.err, std::regex(R"(^model: 1,000 robots, [0-9]{1,3}(,[0-9]{3})+ variables, [0-9]{1,3}(,[0-9]{3})+ rules; 1 invariant and deadlock freedom, 0 LTL properties\n)")))
       << r.err;
   EXPECT_NE(r.err.find("\n  trying: a breadth-first search of the states (at most 100)\n"), std::string::npos) << r.err;
   // What the plan says matches the options: no symmetry, no LTL.
@@ -47,11 +48,11 @@ TEST(Progress, ALargeModelSaysItsSizeAndWhatItWillTryBeforeTheSearch) {
 }
 
 TEST(Progress, APhaseThatReportsNothingIsStillSeenToBeAlive) {
-  // Finding which of 250 robots are interchangeable takes about a minute (each swap compares the
-  // rules and the team-wide guards it touches) and says nothing itself: the heartbeat must. The run
-  // is cut after 15 s. (Should that phase ever take less, pick a larger team.)
+  // Finding which of 5,000 robots are interchangeable takes over half a minute (each swap compares
+  // the rules it touches) and says nothing itself: the heartbeat must. The run is cut after 15 s.
+  // (Should that phase ever take less, pick a larger team.)
   const fs::path dir = workDir("progress_heartbeat");
-  const fs::path mission = swarmOf(250, dir), err = dir / "stderr.txt";
+  const fs::path mission = swarmOf(5000, dir), err = dir / "stderr.txt";
   const std::string command = "cd '" SEMO_SOURCE_DIR "' && timeout 15 '" SEMO_VERIFY "' check '" + mission.string() + "'" + kStrategy +
                               " >/dev/null 2>'" + err.string() + "'";
   const int status = std::system(command.c_str());
@@ -59,7 +60,7 @@ TEST(Progress, APhaseThatReportsNothingIsStillSeenToBeAlive) {
   ASSERT_EQ(WEXITSTATUS(status), 124) << "the check ended within 15 s: this test needs a phase that lasts longer\n" << slurp(err);
   const std::string text = slurp(err);
   // The model's size before the search's first phase (a slow translation may be said before it).
-  const std::size_t model = text.find("model: 250 robots, "), symmetry = text.find("] symmetry: ");
+  const std::size_t model = text.find("model: 5,000 robots, "), symmetry = text.find("] symmetry: ");
   ASSERT_NE(model, std::string::npos) << text;
   EXPECT_LT(model, symmetry) << text;
   // A line within the first seconds, then one at least every ten seconds, the symmetry phase
@@ -72,7 +73,7 @@ TEST(Progress, APhaseThatReportsNothingIsStillSeenToBeAlive) {
     std::smatch m;
     if (!std::regex_match(line, m, timed)) continue;
     seconds.push_back(std::stoi(m[1].str()));
-    if (m[2].str() == "symmetry: which of the 250 robots are interchangeable (still working)") ++repeated;
+    if (m[2].str() == "symmetry: which of the 5000 robots are interchangeable (still working)") ++repeated;
   }
   ASSERT_GE(seconds.size(), 2u) << text;
   EXPECT_LE(seconds.front(), 5) << text;
@@ -81,7 +82,7 @@ TEST(Progress, APhaseThatReportsNothingIsStillSeenToBeAlive) {
 }
 
 // Memory running out is a resource limit, said as such (exit 3), not an abort: 100,000 robots
-// (their translation grows with the square of the team) under a 2 GB address-space limit.
+// (400,004 variables, 800,000 rules) under a 2 GB address-space limit.
 TEST(Progress, ATeamTooLargeForTheMemoryEndsAsALimitNotASignal) {
   if (SEMO_PROGRESS_SANITIZED) GTEST_SKIP() << "AddressSanitizer reserves more address space than the limit allows";
   const fs::path dir = workDir("progress_memory");

@@ -30,7 +30,7 @@ struct RuleSite {
     ModeDefault,      // `robot` takes its mode `index`'s default (every plan done)
     Takeover,         // `robot` takes over leader block slot `index` (RobotTable::leaderBlocks)
     Discover,         // `robot` finds a fact: discover rule `index` (RobotTable::discoverRules)
-    Learn,            // `robot` learns knowledge slot `index` from teacher `extra` (index in team), to `count` facts
+    Learn,            // `robot` learns knowledge slot `index` from a live teammate, to `count` facts
     Heartbeat,        // a heartbeat period of leader block `index`; bit i of `extra`: the heartbeat to candidate i is lost
   };
   Kind kind = Kind::None;

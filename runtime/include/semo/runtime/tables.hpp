@@ -265,7 +265,7 @@ struct RobotTable {
     friend bool operator==(const Discover&, const Discover&) = default;
   };
   std::vector<Discover> discoverRules;
-  // per entry of `knowledge`: [teacher * (facts + 1) + count] -> the rule "learns from teacher, now holds count"
+  // per entry of `knowledge`: [count] -> the rule "learns from a teammate, now holds count"
   std::vector<std::vector<Id>> learnRule;
   DataflowTable dataflow;  // its task graph, proven capacities and static schedules (empty: not projected)
   friend bool operator==(const RobotTable&, const RobotTable&) = default;
@@ -275,11 +275,14 @@ struct RobotTable {
 
 // One IR variable, as read off the running team (specs/runtime.md): the same roles as the
 // semantics' lowering. Every per-robot variable of a crashed robot reads as its initial value.
+// The counts of a large team (Holding, AtPoints) are how many live robots of `team` hold a number
+// of facts of item `index` / have their pc of plan `index` that is one of `values`.
 struct AbstractVar {
-  enum class Kind : std::uint8_t { Alive, Crashed, Mode, Pc, Event, View, Message, Channel, Leads, Silence, LostHeartbeats, Knows };
+  enum class Kind : std::uint8_t { Alive, Crashed, Mode, Pc, Event, View, Message, Channel, Leads, Silence, LostHeartbeats, Knows, Holding, AtPoints };
   Kind kind = Kind::Alive;
   Id robot = kNone, team = kNone, index = kNone;  // index: plan, event, topic, leader block (LeaderBlockTable), knowledge item
   std::int32_t init = 0;
+  std::vector<std::int32_t> values;  // Holding, AtPoints: the values counted, ascending
   std::string name;  // the IR variable's name
   friend bool operator==(const AbstractVar&, const AbstractVar&) = default;
 };
@@ -319,7 +322,7 @@ struct MissionTables {
 // The tables' layout, as a number: compiled into generated code (`semo-verify simulate --generated`
 // loads tables compiled elsewhere only when their layout is its own). It changes with the version
 // below, bumped whenever a table's members change, and with the structs' sizes.
-inline constexpr unsigned long long kTablesVersion = 2;
+inline constexpr unsigned long long kTablesVersion = 3;
 inline constexpr unsigned long long kTablesLayout =
     kTablesVersion * 1000003ull ^ (sizeof(MissionTables) << 8) ^ (sizeof(RobotTable) << 20) ^ (sizeof(Row) << 32) ^
     (sizeof(PlanTable) << 40) ^ (sizeof(DataflowTable) << 48) ^ (sizeof(ScenarioTable) << 56) ^ (sizeof(Operand) << 4);

@@ -33,12 +33,16 @@ struct VariableRole {
     Silence,         // heartbeat periods the robot heard nothing in block `index`
     LostHeartbeats,  // heartbeats to the robot lost in a row in block `index` (the network's count)
     Knows,           // how many facts of knowledge item `knowledge` the robot holds
+    // Team counts (specs/semantics.md, "Counts of a large team"): how many live robots of `team`
+    Holding,         // hold a number of facts of item `knowledge` that is one of `values`
+    AtPoints,        // have their program counter of plan `index` at one of `values`
   };
   Kind kind = Kind::Alive;
   Index robot = model::kNone;
   Index team = model::kNone;
   Index index = model::kNone;
   std::string knowledge;
+  std::vector<std::int32_t> values;  // Holding, AtPoints: the counted values, ascending
 
   VariableRole() = default;
   VariableRole(Kind k, Index robotIndex, Index teamIndex, Index what = model::kNone, std::string knowledgeName = {})
@@ -123,7 +127,7 @@ struct RuleMeaning {
     ProgramStep,      // robot, plan: from `from` through `actions` to `to`, if `guards`, doing `effects`
     ModeDefault,      // robot: every plan of mode `mode` is done; enters mode `target`
     Discover,         // robot, working in group service `service` (plan, from): finds a new fact of `knowledge`
-    Learn,            // robot learns `knowledge` from `peer` and then holds `count` facts
+    Learn,            // robot learns `knowledge` from some live teammate and then holds `count` facts
     EventDelivery,    // event `index` reaches robot
     EventLoss,        // event `index` to robot is lost
     MessageDelivery,  // the value of topic `index` on its way to robot reaches its view

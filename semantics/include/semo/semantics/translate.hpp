@@ -16,6 +16,11 @@ struct TranslationOptions {
   std::optional<std::string> lossOverride;  // --loss none|publish|events|knowledge|heartbeats|all, or a list: events,publish
   std::optional<bool> fairLossOverride;     // --fair-loss / --unfair-loss
   std::map<std::string, int> crashPerTeam;  // --crash N:TEAM: that team may lose up to N robots (before crashOverride)
+  // Teams of more robots than this get counts (specs/semantics.md, "Counts of a large team"): a
+  // robot's rules read how many teammates hold a number of facts or stand at some program points,
+  // not each teammate, so the model grows linearly with the team. Both forms mean the same runs;
+  // the option is for tests that compare them.
+  std::size_t countTeamsAbove = 8;
 };
 
 // The IR of a mission and what its variables and rules mean (lowering.hpp), index for index.
