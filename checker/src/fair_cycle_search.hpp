@@ -271,6 +271,7 @@ class FairCycleSearch {
     frameSwaps_.resize(component.size());
     for (std::size_t k = 0; k < component.size(); ++k) frameSwaps_[k] = p_.symmetry().decompose(frame[k]);
     for (std::uint32_t g = 0; g < orbit_.size(); ++g) orbit_[g] = g;
+    if (p_.prunesEqualRobots()) liftEqualNeighbours(component);
     for (const std::string& key : generators) {
       Permutation g(key.size() / sizeof(std::uint16_t));
       std::copy(key.begin(), key.end(), reinterpret_cast<char*>(g.data()));
@@ -279,6 +280,32 @@ class FairCycleSearch {
         if (fairness_.groupOf[r] == Fairness::kNone) continue;
         std::uint32_t a = orbitOf(fairness_.groupOf[r]), b = orbitOf(fairness_.groupOf[p_.symmetry().image(r, swaps)]);
         if (a != b) orbit_[std::max(a, b)] = std::min(a, b);
+      }
+    }
+  }
+
+  // The product left out the rules of a robot equal to its neighbour (Product::pruneEqualRobots):
+  // their edges, parallel to the lower rule's, would have added to the group the swap of the two
+  // robots, seen in that state's frame (it fixes the concrete state, so it maps the concrete
+  // component onto itself: it belongs to the group either way). Merged here directly: the orbits
+  // of the rules the swap moves, each named in the frame of the first state.
+  void liftEqualNeighbours(const std::vector<std::uint32_t>& component) {
+    const Symmetry& symmetry = p_.symmetry();
+    values_.resize(cm_.layout().variables());
+    for (std::size_t k = 0; k < component.size(); ++k) {
+      cm_.layout().unpack(p_.store().state(component[k]), values_.data());
+      if (!symmetry.equalNeighbours(values_.data(), equal_)) continue;
+      for (std::size_t slot = 1; slot < equal_.size(); ++slot) {
+        if (equal_[slot] == 0) continue;
+        for (std::size_t s : {slot - 1, slot}) {
+          for (std::uint32_t r : symmetry.rulesTouching(s)) {
+            const std::uint32_t g = fairness_.groupOf[absolute(k, r)];
+            const std::uint32_t h = fairness_.groupOf[absolute(k, symmetry.swappedWithPrevious(r, slot))];
+            if (g == Fairness::kNone || h == Fairness::kNone) continue;
+            const std::uint32_t a = orbitOf(g), b = orbitOf(h);
+            if (a != b) orbit_[std::max(a, b)] = std::min(a, b);
+          }
+        }
       }
     }
   }
@@ -310,6 +337,7 @@ class FairCycleSearch {
   std::uint32_t stamp_ = 0;
   std::vector<std::uint32_t> found_;
   std::vector<Value> values_;
+  std::vector<char> equal_;  // per slot, for liftEqualNeighbours
   std::vector<std::uint32_t> candidates_;
 };
 

@@ -119,6 +119,15 @@ class Product {
   // Rules never taken (per rule, 1: barred), e.g. crashes and losses in a hunt for a violation
   // that needs none: fewer runs still.
   void bar(std::vector<char> barred) { barred_ = std::move(barred); }
+  // With symmetry: a rule of a robot whose values equal its neighbour's (a rule the swap of the two
+  // maps to a lower one, Symmetry::redundant) leads to the lower rule's targets and is not
+  // expanded. The fair cycle search must then count the swaps of equal neighbours in the group it
+  // lifts a component with (FairCycleSearch::liftComponent); and a settling world, which keeps
+  // cycles to the steps of one reading per robot, must not see the lower rule in place of its image.
+  void pruneEqualRobots(bool on) { pruneEqual_ = on; }
+  // A step that would leave a declared range is no step (LivenessOptions::slice), not an error.
+  void outOfRangeIsNoStep(bool on) { outOfRangeIsNoStep_ = on; }
+  [[nodiscard]] bool prunesEqualRobots() const { return pruneEqual_ && symmetric(); }
   // Only the steps that decide each sensed condition as `world` says (per point: -1 either way).
   void senseOnly(const Sensing* sensing, std::vector<std::int8_t> world) {
     sensing_ = sensing;
@@ -137,6 +146,7 @@ class Product {
       if (ba_.states[q].initial && labelHolds(q, initialBits)) insert(values.data(), q, kNoParent, 0, packed);
     }
     std::vector<std::uint32_t> candidates;
+    std::vector<char> equal;
     // The model successors of the state being expanded: their rules, and their values back to back.
     std::vector<std::uint32_t> vias;
     std::vector<std::uint64_t> turns;  // the scheduler's turn after each successor
@@ -155,6 +165,7 @@ class Product {
       // Rules left out of a hunt (bar, senseOnly); they still count as enabled for fairness. A
       // plain exploration (hunting false) pays for none of it per rule.
       const bool hunting = scheduler_ != nullptr || !barred_.empty() || sensing_ != nullptr;
+      const bool pruning = pruneEqual_ && symmetric() && !hunting && symmetry_.equalNeighbours(values.data(), equal);
       auto leftOut = [&](std::uint32_t r) {
         return (!barred_.empty() && barred_[r] != 0) || (sensing_ != nullptr && !sensing_->agrees(r, world_));
       };
@@ -177,12 +188,17 @@ class Product {
       bool fairEnabled = false;
       for (std::uint32_t r : candidates) {
         const CompiledRule& rule = cm_.rules()[r];
+        std::uint32_t lower = 0;
+        // Enabled exactly when `lower` is (the swap leaves the state as it is), and as fair:
+        // counted there for the stutter.
+        if (pruning && symmetry_.redundant(r, equal, lower)) continue;
         if (rule.guard.eval(values.data()) == 0) continue;
         const bool fair = cm_.model().rules[r].weaklyFair || cm_.model().rules[r].stronglyFair;
         fairEnabled = fairEnabled || fair;
         if (hunting && (leftOut(r) || (scheduler_ != nullptr && fair && scheduler_->groupOf[r] != chosen))) continue;
         for (std::size_t b = 0; b < rule.branches.size(); ++b) {
           if (!cm_.step(rule.branches[b], values.data(), next.data())) {
+            if (outOfRangeIsNoStep_) continue;
             why = "an update left a variable's declared range (run 'check' for the trace)";
             return false;
           }
@@ -287,6 +303,7 @@ class Product {
   std::vector<char> barred_;
   const Sensing* sensing_ = nullptr;
   std::vector<std::int8_t> world_;
+  bool pruneEqual_ = false, outOfRangeIsNoStep_ = false;
   std::vector<std::uint64_t> edgeStart_;
   std::vector<Edge> edges_;
   Symmetry symmetry_;

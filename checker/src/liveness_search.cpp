@@ -48,7 +48,7 @@ struct Outcome {
 // the quotient is searched; it decides the property exactly (see FairCycleSearch::liftComponent).
 // A violation found there is searched again without symmetry for a concrete lasso.
 Outcome checkProperty(const CompiledModel& cm, const ir::Property& prop, const SearchLimits& limits, Clock::time_point start,
-                      const Symmetry* symmetry) {
+                      const Symmetry* symmetry, bool slice = false) {
   Outcome out{{prop.name, prop.origin, Verdict::Unknown, {}}, 0, 0, true, {}, false, {}, {}};
   Buchi ba;
   try {
@@ -64,6 +64,10 @@ Outcome checkProperty(const CompiledModel& cm, const ir::Property& prop, const S
   }
   out.reduced = symmetry != nullptr;
   Product product(cm, ba, symmetry);
+  // As the safety search: the rules of a robot equal to its neighbour are not expanded (the same
+  // developer's knob turns that off, to measure).
+  product.pruneEqualRobots(symmetry != nullptr && std::getenv("SEMO_NO_EQUAL_ROBOT_PRUNING") == nullptr);
+  product.outOfRangeIsNoStep(slice);
   out.whole = product.explore(limits, start, 0, out.why);
   out.states = product.size();
   out.transitions = product.edgeCount();
@@ -97,14 +101,14 @@ Outcome checkProperty(const CompiledModel& cm, const ir::Property& prop, const S
     return out;
   }
   if (symmetry != nullptr && prop.settled) {
-    Outcome concrete = checkProperty(cm, prop, limits, start, nullptr);
+    Outcome concrete = checkProperty(cm, prop, limits, start, nullptr, slice);
     concrete.states += out.states;
     concrete.transitions += out.transitions;
     concrete.reduced = true;
     return concrete;
   }
   if (symmetry != nullptr) {
-    Outcome concrete = checkProperty(cm, prop, limits, start, nullptr);
+    Outcome concrete = checkProperty(cm, prop, limits, start, nullptr, slice);
     concrete.states += out.states;
     concrete.transitions += out.transitions;
     concrete.reduced = true;
@@ -138,7 +142,7 @@ Outcome decide(const CompiledModel& cm, const ControlFacts& facts, std::size_t k
                const LivenessOptions& options, Clock::time_point start, const Symmetry* symmetry) {
   const ir::Property& prop = cm.model().properties[k];
   if (!options.slicing || usesNext(prop.formula)) {
-    Outcome o = checkProperty(cm, prop, limits, start, symmetry);
+    Outcome o = checkProperty(cm, prop, limits, start, symmetry, options.slice);
     o.method.states = o.states;
     return o;
   }

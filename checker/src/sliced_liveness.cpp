@@ -48,6 +48,7 @@ SlicedOutcome refineSlices(const CompiledModel& full, const ControlFacts& facts,
   sub.onPhase = nullptr;  // a slice's verdict is not the property's: the rounds are said below
   LivenessOptions plain;
   plain.slicing = false;
+  plain.slice = true;
   double symbolicSeconds = 0;
   bool enumerate = true;
   for (std::uint32_t round = 0; round < kMaxRefinements; ++round) {

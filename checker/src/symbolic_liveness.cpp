@@ -280,7 +280,8 @@ SymbolicOutcome decideSymbolically(const ir::Model& model, std::size_t property,
       std::fprintf(stderr, "[symbolic] reachable: %.0f states, %d nodes, %.1f s\n", out.reachable, bdd_nodecount(reach),
                    std::chrono::duration<double>(Clock::now() - start).count());
     }
-    if (product.overflowsFrom(reach)) throw GiveUp("an update leaves a variable's declared range");
+    // A step of a slice (or of the cone) that would leave a declared range is no step: the
+    // relation has no such outcome (LivenessOptions::slice says why that is sound).
     SettledSearch search(product, sensing, model.rules.size());
     const bool violated = limits.quietLoop ? search.violatedQuietly(reach) : search.violated(reach, prop.settled);
     out.worlds = search.worlds();

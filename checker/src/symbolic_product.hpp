@@ -155,15 +155,6 @@ class SymbolicProduct {
     return out;
   }
 
-  // Whether a step leaves a variable's declared range from one of `states` (the explicit engine
-  // stops with an error there; this search then gives up instead of deciding).
-  bool overflowsFrom(const bdd& states) const {
-    for (const Rule& r : rules_) {
-      if ((states & r.overflow) != bddfalse) return true;
-    }
-    return false;
-  }
-
   [[nodiscard]] double count(const bdd& states) const { return bdd_satcountset(states, currentBits_); }
 
   // The states of `within` from which a fair accepting cycle through `within` exists, the loop
@@ -399,7 +390,6 @@ class SymbolicProduct {
     bdd currentSet, nextSet;  // the bits of what it assigns
     bddPair* toNext = nullptr;
     bddPair* toCurrent = nullptr;
-    bdd overflow;    // current states where an outcome leaves a declared range
   };
 
   void check() {
@@ -537,7 +527,6 @@ class SymbolicProduct {
       r.nextSet &= bitSet(layouts_[v], true);
     }
     bdd outcomes = bddfalse;
-    r.overflow = bddfalse;
     for (const ir::Branch& b : rule.branches) {
       bdd outcome = bddtrue;
       for (ir::VarId v : assigned) {
@@ -551,8 +540,8 @@ class SymbolicProduct {
           for (std::int64_t k = l.min; k <= l.max; ++k) next |= cube(l, k, false) & cube(l, k, true);
         } else {
           for (const auto& [value, when] : values(a->value)) {
-            if (value < l.min || value > l.max) r.overflow |= when;
-            else next |= when & cube(l, value, true);
+            // An outcome leaving the range is none (LivenessOptions::slice).
+            if (value >= l.min && value <= l.max) next |= when & cube(l, value, true);
           }
         }
         outcome &= next;
@@ -561,7 +550,6 @@ class SymbolicProduct {
       check();
     }
     r.relation = r.guard & outcomes;
-    r.overflow &= r.guard;
     check();
     return r;
   }

@@ -46,6 +46,10 @@ Symmetry Symmetry::find(const ir::Model& model, const SymmetryScope& scope) {
     touch->slots.insert(touch->slots.end(), slots.begin(), slots.end());
     touch->start.push_back(static_cast<std::uint32_t>(touch->slots.size()));
   }
+  touch->rulesOf.resize(s.slots_);
+  for (std::uint32_t r = 0; r + 1 < touch->start.size(); ++r) {
+    for (std::uint32_t k = touch->start[r]; k < touch->start[r + 1]; ++k) touch->rulesOf[touch->slots[k]].push_back(r);
+  }
   // The swaps of neighbours, which the safety search asks for per candidate rule (Symmetry::redundant).
   std::size_t neighbours = 0;
   for (const Class& k : s.classes_) neighbours += k.robots.size() - 1;
@@ -78,6 +82,8 @@ bool Symmetry::equalNeighbours(const Value* values, std::vector<char>& equal) co
   }
   return any;
 }
+
+const std::vector<std::uint32_t>& Symmetry::rulesTouching(std::size_t slot) const { return touch_->rulesOf[slot]; }
 
 std::uint32_t Symmetry::swappedWithPrevious(std::uint32_t rule, std::size_t slot) const {
   if (slot < touch_->withPrevious.size() && !touch_->withPrevious[slot].empty()) return touch_->withPrevious[slot][rule];

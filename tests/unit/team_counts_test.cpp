@@ -67,7 +67,9 @@ TEST(TeamCounts, MeanWhatTheRobotByRobotFormMeans) {
     EXPECT_TRUE(countNames(*plain->model).empty()) << "three robots: no counts by default";
     const std::vector<std::string> names = countNames(*counted->model);
     EXPECT_NE(std::find(names.begin(), names.end(), "Swarm.at.Move.2"), names.end()) << strategy;  // inside the block
-    if (strategy == "strategy.xml") EXPECT_NE(std::find(names.begin(), names.end(), "Swarm.holding.obstacle.1"), names.end());
+    if (strategy == "strategy.xml") {
+      EXPECT_NE(std::find(names.begin(), names.end(), "Swarm.holding.obstacle.1"), names.end());
+    }
     for (bool symmetry : {false, true}) {
       const Verdicts a = verdictsOf(*counted->model, symmetry), b = verdictsOf(*plain->model, symmetry);
       EXPECT_EQ(a.states, b.states) << strategy << (symmetry ? " with symmetry" : "");

@@ -56,6 +56,10 @@ struct LivenessResult {
 };
 
 struct LivenessOptions {
+  // The model is a slice (slicing.hpp): a step that would leave a variable's declared range is no
+  // step (it is the image of no step of the model, whose updates stay in range: a step leaving one
+  // is a modelling error the safety search reports), where on a model it stops the search.
+  bool slice = false;
   // Decide each property without `next` on slices of the model first, refined by counterexamples
   // (sliced_liveness.cpp); a lasso is always one of the whole model.
   bool slicing = true;

@@ -68,6 +68,10 @@ class Symmetry {
   // lost, and the expansion of a swarm's state costs its distinct robots, not all of them.
   bool equalNeighbours(const Value* values, std::vector<char>& equal) const;
   [[nodiscard]] bool redundant(std::uint32_t rule, const std::vector<char>& equal, std::uint32_t& lower) const;
+  // The rule under the swap of the robots in slot `slot` and the slot before it (same class), and
+  // the rules that read or write the variables of the robot in `slot` (the others it leaves alone).
+  [[nodiscard]] std::uint32_t swappedWithPrevious(std::uint32_t rule, std::size_t slot) const;
+  [[nodiscard]] const std::vector<std::uint32_t>& rulesTouching(std::size_t slot) const;
 
  private:
   struct Class {
@@ -82,8 +86,6 @@ class Symmetry {
     std::vector<std::uint32_t> rules;
   };
   void canonicalize(Value* values, Permutation* moved) const;
-  // The rule under the swap of the robots in slot `slot` and the slot before it (same class).
-  [[nodiscard]] std::uint32_t swappedWithPrevious(std::uint32_t rule, std::size_t slot) const;
 
   // Per rule, the slots of the robots whose variables it reads or writes (rules[start[r] ..
   // start[r + 1]]); per slot, its class and position. Shared, as the swaps.
@@ -94,6 +96,7 @@ class Symmetry {
     // first slot of a class empty): one lookup where composing generators takes three. Left empty
     // when it would take more than 256 MB (then composed).
     std::vector<std::vector<std::uint32_t>> withPrevious;
+    std::vector<std::vector<std::uint32_t>> rulesOf;  // per slot: the rules with it among their slots
   };
   std::vector<Class> classes_;
   std::shared_ptr<const std::vector<Swap>> swaps_;
