@@ -38,12 +38,12 @@ Expr both(Expr a, Expr b) {
 // A few per guard: a list, not a table over every variable of the model.
 using Pins = std::vector<std::pair<ir::VarId, std::int32_t>>;
 void pins(const Expr& guard, Pins& out) {
-  std::vector<const Expr*> todo{&guard};
-  while (!todo.empty()) {
-    const Expr* e = todo.back();
-    todo.pop_back();
+  std::vector<const Expr*> pending{&guard};
+  while (!pending.empty()) {
+    const Expr* e = pending.back();
+    pending.pop_back();
     if (e->op == Op::And) {
-      for (const Expr& a : e->args) todo.push_back(&a);
+      for (const Expr& a : e->args) pending.push_back(&a);
     } else if (e->op == Op::Var) {
       out.emplace_back(static_cast<ir::VarId>(e->value), 1);
     } else if (e->op == Op::Not && e->args[0].op == Op::Var) {

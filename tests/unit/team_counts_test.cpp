@@ -114,11 +114,11 @@ TEST(TeamCounts, AreTheNumberOfLiveRobotsTheyCountInEveryReachableState) {
   ASSERT_GE(counts.size(), 2u);
   checker::Stepper stepper(m);
   std::set<checker::Stepper::State> seen{stepper.initial()};
-  std::vector<checker::Stepper::State> todo{stepper.initial()};
+  std::vector<checker::Stepper::State> pending{stepper.initial()};
   std::size_t nonZero = 0;
-  while (!todo.empty()) {
-    const checker::Stepper::State x = todo.back();
-    todo.pop_back();
+  while (!pending.empty()) {
+    const checker::Stepper::State x = pending.back();
+    pending.pop_back();
     for (const Count& c : counts) {
       std::int32_t n = 0;
       for (std::size_t r = 0; r < robots.size(); ++r) {
@@ -129,7 +129,7 @@ TEST(TeamCounts, AreTheNumberOfLiveRobotsTheyCountInEveryReachableState) {
       nonZero += n > 0 ? 1 : 0;
     }
     for (auto& [choice, y] : stepper.successors(x)) {
-      if (seen.insert(y).second) todo.push_back(std::move(y));
+      if (seen.insert(y).second) pending.push_back(std::move(y));
     }
   }
   EXPECT_GT(seen.size(), 100u);
