@@ -94,13 +94,13 @@ Ic3Outcome proveWithIc3(z3::context& ctx, const TransitionSystem& sys, unsigned 
   return out;
 }
 
-Ic3Outcome proveWithIc3(z3::context& ctx, SmtEncoding& enc, const z3::expr& error, unsigned timeoutMs) {
+Ic3Outcome proveWithIc3(z3::context& ctx, SmtEncoding& enc, const z3::expr& error, unsigned timeoutMs, const z3::expr& assumed) {
   z3::expr_vector inputs(ctx);
   inputs.push_back(enc.action(0));
   // The compact form of the same step relation for the check: the solver decides it many times
   // faster; the form by cases is the one Spacer projects best.
-  TransitionSystem sys{enc.state(0), enc.state(1), inputs, enc.initial(0), enc.transitionByCases(0) && enc.inRange(1),
-                       enc.transition(0) && enc.inRange(1), error};
+  TransitionSystem sys{enc.state(0), enc.state(1), inputs, enc.initial(0), assumed && enc.transitionByCases(0) && enc.inRange(1),
+                       assumed && enc.transition(0) && enc.inRange(1), assumed && error};
   return proveWithIc3(ctx, sys, timeoutMs);
 }
 

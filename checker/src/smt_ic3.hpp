@@ -37,7 +37,8 @@ struct TransitionSystem {
 Ic3Outcome proveWithIc3(z3::context& ctx, const TransitionSystem& system, unsigned timeoutMs);
 
 // The model of `enc` with `error`, which may mention step 0, action 0 and step 1 of `enc` (a range
-// error is a step that leaves a range).
-Ic3Outcome proveWithIc3(z3::context& ctx, SmtEncoding& enc, const z3::expr& error, unsigned timeoutMs);
+// error is a step that leaves a range). `assumed`, over step 0, is known to hold in every reachable
+// state (proven lemmas): steps and errors are taken from such states only.
+Ic3Outcome proveWithIc3(z3::context& ctx, SmtEncoding& enc, const z3::expr& error, unsigned timeoutMs, const z3::expr& assumed);
 
 }  // namespace semo::checker::detail

@@ -87,10 +87,36 @@ std::optional<Trace> pathOfDepth(const ir::Model& m, std::uint32_t depth, Error 
   return traceOf(s.get_model(), enc, m, depth);
 }
 
+// The lemmas (SmtOptions::lemmas), if each holds initially and together they are kept by every
+// step: then they hold in every reachable state. Whole or nothing: a definition that fails means
+// the counts are not what they claim, and the others are not trusted either.
+bool lemmasInductive(const ir::Model& m, const SmtOptions& options) {
+  if (options.lemmas.empty()) return false;
+  if (options.onPhase) options.onPhase("smt: the definitions of the team counts (" + std::to_string(options.lemmas.size()) + ")");
+  z3::context ctx;
+  SmtEncoding enc(ctx, m);
+  z3::params p(ctx);
+  if (options.timeoutMs != 0) p.set("timeout", options.timeoutMs);
+  z3::expr_vector now(ctx), next(ctx);
+  for (const ir::Expr& l : options.lemmas) {
+    now.push_back(enc.holds(l, 0));
+    next.push_back(enc.holds(l, 1));
+  }
+  z3::solver initiation(ctx);
+  initiation.set(p);
+  initiation.add(enc.initial(0) && !z3::mk_and(now));
+  if (initiation.check() != z3::unsat) return false;
+  z3::solver consecution(ctx);
+  consecution.set(p);
+  consecution.add(z3::mk_and(now) && enc.transition(0) && !z3::mk_and(next));
+  return consecution.check() == z3::unsat;
+}
+
 // IC3 on every property still unknown after k-induction. The step relation keeps to the ranges, so
 // the ranges come first: unless k-induction already proved them, IC3 must (an update that leaves a
 // range is a modelling error, reported with its path as BMC would).
-void runIc3(const ir::Model& m, const std::vector<Target>& props, const SmtOptions& options, bool rangesProven, SmtResult& out) {
+void runIc3(const ir::Model& m, const std::vector<Target>& props, const SmtOptions& options, bool rangesProven, bool lemmas,
+            SmtResult& out) {
   SearchResult& result = out.search;
   std::vector<std::size_t> open;
   for (std::size_t j = 0; j < props.size(); ++j) {
@@ -98,9 +124,14 @@ void runIc3(const ir::Model& m, const std::vector<Target>& props, const SmtOptio
   }
   z3::context ctx;
   SmtEncoding enc(ctx, m);
+  z3::expr_vector proven(ctx);
+  if (lemmas) {
+    for (const ir::Expr& l : options.lemmas) proven.push_back(enc.holds(l, 0));
+  }
+  const z3::expr assumed = z3::mk_and(proven);
   if (!rangesProven) {
     if (options.onPhase) options.onPhase("smt: IC3 on the variables' ranges");
-    Ic3Outcome ranges = detail::proveWithIc3(ctx, enc, enc.transitionByCases(0) && !enc.inRange(1), options.timeoutMs);
+    Ic3Outcome ranges = detail::proveWithIc3(ctx, enc, enc.transitionByCases(0) && !enc.inRange(1), options.timeoutMs, assumed);
     if (ranges.kind == Ic3Outcome::Kind::Violated) {
       auto leaves = [](SmtEncoding& e, std::uint32_t d) { return !e.inRange(d); };
       // The error clause takes the step that leaves the range itself: one more than IC3's count.
@@ -129,7 +160,7 @@ void runIc3(const ir::Model& m, const std::vector<Target>& props, const SmtOptio
   for (std::size_t n = 0; n < open.size(); ++n) {
     const std::size_t j = open[n];
     if (options.onPhase) options.onPhase("smt: IC3 on " + props[j].name + " (" + std::to_string(n + 1) + " of " + std::to_string(open.size()) + ")");
-    Ic3Outcome o = detail::proveWithIc3(ctx, enc, !good(enc, m, props[j], 0), options.timeoutMs);
+    Ic3Outcome o = detail::proveWithIc3(ctx, enc, !good(enc, m, props[j], 0), options.timeoutMs, assumed);
     if (o.kind == Ic3Outcome::Kind::Proven) {
       result.properties[j].verdict = Verdict::Proven;
       out.proof[j] = SmtProof::Ic3;
@@ -237,6 +268,9 @@ SmtResult checkSafetySmt(const ir::Model& model, const SmtOptions& options) {
   // at step k; a candidate that fails is dropped and the rest tried again, so that what remains
   // is inductive as a whole (and so proven).
   std::vector<char> inductiveFlags(props.size() + 1, 0);  // proven by induction: per property, and last the ranges
+  const bool unbounded = (options.induction || options.ic3) && !result.rangeError && !result.complete && !open.empty();
+  const bool lemmas = unbounded && lemmasInductive(model, options);
+  if (lemmas) out.lemmasProven = options.lemmas.size();
   if (options.induction && !result.rangeError && !result.complete && !open.empty()) {
     z3::context ictx;
     SmtEncoding ind(ictx, model);
@@ -254,9 +288,16 @@ SmtResult checkSafetySmt(const ir::Model& model, const SmtOptions& options) {
     };
     std::vector<char>& proven = inductiveFlags;
     const std::uint32_t maxK = std::min(depth + 1, options.maxInduction);
+    // The proven lemmas hold in every reachable state, so in every state of the path.
+    auto assumeLemmas = [&](std::size_t k) {
+      if (!lemmas) return;
+      for (const ir::Expr& l : options.lemmas) step.add(ind.holds(l, k));
+    };
+    assumeLemmas(0);
     for (std::uint32_t k = 1; k <= maxK; ++k) {
       if (options.onPhase) options.onPhase("smt: k-induction, k = " + std::to_string(k) + " of " + std::to_string(maxK));
       step.add(ind.transition(k - 1));
+      assumeLemmas(k);
       for (std::size_t i = 0; i < k; ++i) step.add(!ind.sameState(i, k));
       for (std::size_t j : candidates) step.add(z3::implies(flags[static_cast<int>(j)], predicate(j, k - 1)));
       std::vector<std::size_t> inductive = candidates;
@@ -290,7 +331,7 @@ SmtResult checkSafetySmt(const ir::Model& model, const SmtOptions& options) {
       if (std::all_of(candidates.begin(), candidates.end(), [&](std::size_t j) { return proven[j] || j == ranges; })) break;
     }
   }
-  if (options.ic3 && !result.rangeError && !result.complete) runIc3(model, props, options, inductiveFlags.back() != 0, out);
+  if (options.ic3 && !result.rangeError && !result.complete) runIc3(model, props, options, inductiveFlags.back() != 0, lemmas, out);
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return out;
 }

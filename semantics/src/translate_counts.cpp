@@ -103,6 +103,21 @@ Expr Translator::othersCounted(ir::VarId count, Index robot, Expr own) const {
   return Expr::binary(Op::Sub, Expr::var(count), std::move(self));
 }
 
+std::vector<Expr> Translator::countDefinitions() const {
+  std::vector<Expr> out;
+  for (const TeamCount& c : counts_) {
+    Expr sum = Expr::constant(0);
+    for (std::size_t i = 0; i < c.of.size(); ++i) {
+      if (!c.of[i]) continue;
+      const std::optional<ir::VarId> alive = vars_[m_.teams[c.team].robots[i]].alive;
+      Expr counted = both(alive ? Expr::var(*alive) : Expr::constant(1), member(c.values, Expr::var(*c.of[i])));
+      sum = Expr::binary(Op::Add, std::move(sum), Expr::ite(std::move(counted), Expr::constant(1), Expr::constant(0)));
+    }
+    out.push_back(Expr::binary(Op::Eq, Expr::var(c.var), std::move(sum)));
+  }
+  return out;
+}
+
 void Translator::maintainCounts() {
   if (counts_.empty()) return;
   // variable -> (count, robot's place in its team) that it feeds

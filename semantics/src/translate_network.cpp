@@ -438,6 +438,7 @@ std::optional<Translation> Translator::run() {
   leaderRules();
   defaultRules();
   maintainCounts();
+  lowering_.countDefinitions = countDefinitions();
   invariants();
   livenessProperties();
   lowering_.programs = programs_;

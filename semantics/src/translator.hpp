@@ -170,6 +170,8 @@ class Translator {
   using CountKey = std::tuple<Index, VariableRole::Kind, std::size_t, std::string, std::vector<std::int32_t>>;
   std::map<CountKey, ir::VarId> countIndex_;
   [[nodiscard]] const TeamCount& countOf(ir::VarId var) const;
+  // Each count's definition as a state predicate (Lowering::countDefinitions).
+  [[nodiscard]] std::vector<Expr> countDefinitions() const;
 };
 
 }  // namespace semo::detail

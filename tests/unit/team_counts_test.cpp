@@ -9,6 +9,7 @@
 
 #include "semo/checker/explicit_search.hpp"
 #include "semo/checker/liveness_search.hpp"
+#include "semo/checker/smt_search.hpp"
 #include "semo/checker/stepper.hpp"
 #include "semo/semantics/load.hpp"
 #include "semo/semantics/translate.hpp"
@@ -134,6 +135,51 @@ TEST(TeamCounts, AreTheNumberOfLiveRobotsTheyCountInEveryReachableState) {
   }
   EXPECT_GT(seen.size(), 100u);
   EXPECT_GT(nonZero, 100u) << "the counts do count something";
+}
+
+// The SMT engine assumes the counts' definitions only once it has proven them (they hold initially
+// and together every step keeps them): with them it proves what the explicit search proves; a
+// claimed definition that is not inductive is refused, and the verdicts stay sound without it.
+TEST(TeamCounts, DefinitionsAreProvenBeforeTheSmtEngineAssumesThem) {
+  SourceManager sources;
+  DiagnosticEngine diags(sources);
+  const std::string dir = SEMO_SOURCE_DIR "/specs/examples/swarm/";
+  auto mission = loadMission({dir + "swarm3.semo", dir + "strategy.xml", std::nullopt}, sources, diags);
+  ASSERT_TRUE(mission.has_value());
+  TranslationOptions counted;
+  counted.countTeamsAbove = 2;
+  std::optional<Translation> t = translateMission(*mission, counted, sources, diags);
+  ASSERT_TRUE(t.has_value());
+  const ir::Model& m = t->model;
+  ASSERT_EQ(t->lowering.countDefinitions.size(), countNames(m).size());
+  ASSERT_GE(countNames(m).size(), 2u);
+  const checker::SearchResult explicitSearch = checker::checkSafety(m, checker::SearchLimits{});
+  ASSERT_TRUE(explicitSearch.complete);
+
+  checker::SmtOptions options;
+  options.maxDepth = 1;  // the unbounded proofs do the work
+  options.lemmas = t->lowering.countDefinitions;
+  const checker::SmtResult proven = checker::checkSafetySmt(m, options);
+  EXPECT_EQ(proven.lemmasProven, options.lemmas.size());
+  ASSERT_EQ(proven.search.properties.size(), explicitSearch.properties.size());
+  for (std::size_t j = 0; j < explicitSearch.properties.size(); ++j) {
+    EXPECT_EQ(proven.search.properties[j].verdict, explicitSearch.properties[j].verdict) << explicitSearch.properties[j].name;
+  }
+
+  // "Nobody is ever inside the block" holds initially but no step keeps it: refused, with the rest.
+  ir::VarId atBlock = 0;
+  for (std::size_t v = 0; v < m.variables.size(); ++v) {
+    if (m.variables[v].name == "Swarm.at.Move.2") atBlock = static_cast<ir::VarId>(v);
+  }
+  ASSERT_EQ(m.variables[atBlock].init, 0);
+  options.lemmas.push_back(ir::Expr::binary(ir::Op::Eq, ir::Expr::var(atBlock), ir::Expr::constant(0)));
+  options.ic3 = false;  // k-induction alone: without the definitions IC3 takes minutes on the ranges
+  const checker::SmtResult refused = checker::checkSafetySmt(m, options);
+  EXPECT_EQ(refused.lemmasProven, 0u);
+  for (std::size_t j = 0; j < explicitSearch.properties.size(); ++j) {
+    const checker::Verdict v = refused.search.properties[j].verdict;
+    EXPECT_TRUE(v == checker::Verdict::Unknown || v == explicitSearch.properties[j].verdict) << explicitSearch.properties[j].name;
+  }
 }
 
 }  // namespace

@@ -215,6 +215,7 @@ int runCheck(const CheckOptions& options) {
     }
     verify.propertyGlobs = globs;
   }
+  if (built->translation) verify.smt.lemmas = built->translation->lowering.countDefinitions;  // the SMT engine proves them first
   announceSearch(*built, options, line);
   std::optional<checker::Report> report =
       checker::verify(*built->model, built->mission ? &*built->mission : nullptr, verify, diags);

@@ -77,6 +77,9 @@ std::string reportText(const checker::Report& r, const ir::Model& model, const s
     out += "engine:      smt (Z3): bounded model checking to depth " + std::to_string(r.smt->bmcDepth) +
            (bmcOnly ? " only (--bmc-only)" : ", then k-induction and IC3") + ", " + fmtSeconds(s.seconds) + " s\n";
     if (!r.engineReason.empty()) out += "             (--engine auto: " + r.engineReason + ")\n";
+    if (r.smt->lemmasProven > 0) {
+      out += "             (the definitions of " + std::to_string(r.smt->lemmasProven) + " team counts proven, then assumed)\n";
+    }
     formationLines(out, r);
     verdictLines(out, r, Kind::Safety);
     verdictLines(out, r, Kind::Liveness);
@@ -203,6 +206,7 @@ nlohmann::json reportJson(const checker::Report& r, const ir::Model& model, cons
   if (smt) {
     root["engine"] = "smt";
     root["bmcDepth"] = r.smt->bmcDepth;
+    root["lemmasProven"] = r.smt->lemmasProven;
     json formation = json::array();
     for (std::size_t b = 0; b < r.formation.size(); ++b) {
       const checker::FormationVerdict& v = r.formation[b];

@@ -20,6 +20,11 @@ struct SmtOptions {
   std::uint32_t maxInduction = 3;  // induction tries k <= min(K + 1, this)
   bool ic3 = true;              // IC3 on what k-induction leaves open
   unsigned timeoutMs = 0;       // per solver call (an IC3 run is one call); 0: none
+  // State predicates the model's maker claims hold in every reachable state: the definitions of a
+  // large team's counts (Lowering::countDefinitions). Each is used only once proven: it holds
+  // initially and the proven ones together are kept by every step. Then k-induction and IC3 assume
+  // them in every state, which they could not find themselves (a sum over the team's robots).
+  std::vector<ir::Expr> lemmas;
   // Told what the engine is doing as each phase starts (a BMC depth, an induction k, an IC3 run),
   // for progress lines; may be empty.
   std::function<void(const std::string&)> onPhase;
@@ -41,6 +46,7 @@ struct SmtResult {
   std::vector<char> deepCounterexample;           // per property: violated beyond bmcDepth (found by IC3)
   std::uint32_t bmcDepth = 0;                     // every path of up to this many steps was covered
   std::string note;                               // why an unbounded proof stopped, if one did
+  std::size_t lemmasProven = 0;                   // of SmtOptions::lemmas (all or none are used)
 };
 
 SmtResult checkSafetySmt(const ir::Model& model, const SmtOptions& options);

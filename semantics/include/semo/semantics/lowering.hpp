@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "semo/semantics/ir.hpp"
 #include "semo/semantics/mission_model.hpp"
 #include "semo/semantics/robot_program.hpp"
 
@@ -168,6 +169,11 @@ struct Lowering {
   // Program walks that change nothing the model sees (an idle loop: `loop (1 SEC) display(x)`):
   // no IR rule, but the running robot takes them (a stutter step).
   std::vector<RuleMeaning> stutters;
+  // What each count of a large team is (specs/semantics.md, "Counts of a large team"):
+  // `count == (alive_1 && x_1 counted) + ... + (alive_n && x_n counted)`, one per count variable.
+  // True in every reachable state by construction; the SMT engine proves them (they are inductive)
+  // and then uses them, since its IC3 cannot find a sum itself.
+  std::vector<ir::Expr> countDefinitions;
 };
 
 }  // namespace semo::lowering
