@@ -17,7 +17,9 @@ TEST(PropertySelection, GlobsTakeStarAndQuestionMarkAndReadBracketsLiterally) {
   EXPECT_TRUE(globMatches("group_formation[March group (Legs, ...)]", "group_formation[March group (Legs, ...)]"));
   EXPECT_FALSE(globMatches("[a]", "a")) << "brackets are not character classes";
   // Many stars against a long name that fails at the end stay fast (at most glob size x name size).
-  EXPECT_FALSE(globMatches(std::string(200, '*') + "z", std::string(5000, 'a')));
+  std::string stars(200, '*');
+  stars += 'z';
+  EXPECT_FALSE(globMatches(stars, std::string(5000, 'a')));
 }
 
 TEST(PropertySelection, KeepsTheChosenPropertiesAndDropsDeadlockFreedomUnlessChosen) {

@@ -8,6 +8,17 @@
 
 namespace semo::test {
 
+// How many random models a comparison goes through, and how many cases of a kind it must meet:
+// all of them in a release build; a fifth under the sanitizers, which run these searches ten times
+// slower and look for faults in code paths that the first models already take (the release run
+// goes through every model). The counts a test expects are then a tenth: the first fifth of the
+// seeds is not exactly a fifth of every kind.
+#ifndef SEMO_TESTS_SANITIZED
+#define SEMO_TESTS_SANITIZED 0
+#endif
+inline std::uint32_t randomModels(std::uint32_t all) { return SEMO_TESTS_SANITIZED ? all / 5 : all; }
+inline int atLeast(int all) { return SEMO_TESTS_SANITIZED ? all / 10 : all; }
+
 // Robots with a program counter, a mode and a flag, talking through a shared slot; steps grouped per
 // program counter, some deciding sensed conditions; losses and environment steps; properties over a
 // robot or two, some on a settling world.

@@ -42,7 +42,7 @@ void forEachRandomProperty(std::uint32_t seeds, F f) {
 
 TEST(SymbolicLiveness, RandomModelsGetTheExplicitVerdictsAndCheckedLassos) {
   int proven = 0, violated = 0;
-  forEachRandomProperty(300, [&](const ir::Model& m, const LivenessResult& reference, std::size_t k) {
+  forEachRandomProperty(test::randomModels(300), [&](const ir::Model& m, const LivenessResult& reference, std::size_t k) {
     const SymbolicOutcome s = detail::decideSymbolically(m, k, {});
     ASSERT_NE(s.kind, SymbolicOutcome::Kind::GaveUp) << s.why;
     const Verdict expected = reference.properties[k].verdict;
@@ -56,15 +56,15 @@ TEST(SymbolicLiveness, RandomModelsGetTheExplicitVerdictsAndCheckedLassos) {
     const LassoCheck c = checkLasso(m, *s.lasso, m.properties[k]);
     EXPECT_TRUE(c.counterexample()) << c.why << " unfair " << c.unfairGroups.size() << " unsettled " << c.unsettled.size();
   });
-  EXPECT_GT(proven, 100);
-  EXPECT_GT(violated, 100);
+  EXPECT_GT(proven, test::atLeast(100));
+  EXPECT_GT(violated, test::atLeast(100));
 }
 
 // With a slice budget of one state, every slice is searched symbolically: its lasso refines the
 // slice as an enumerated one would, and a proof on a slice is a proof on the model.
 TEST(SymbolicLiveness, SlicesTooLargeToEnumerateAreDecidedSymbolically) {
   int symbolicProofs = 0;
-  for (std::uint32_t seed = 1; seed <= 150; ++seed) {
+  for (std::uint32_t seed = 1; seed <= test::randomModels(150); ++seed) {
     const std::string text = test::RandomModel(seed).text();
     SCOPED_TRACE("seed " + std::to_string(seed) + ":\n" + text);
     const ir::Model m = test::parseIr(text);
@@ -88,7 +88,7 @@ TEST(SymbolicLiveness, SlicesTooLargeToEnumerateAreDecidedSymbolically) {
       }
     }
   }
-  EXPECT_GT(symbolicProofs, 50);
+  EXPECT_GT(symbolicProofs, test::atLeast(50));
 }
 
 // Eight counters cycle (65,536 values); z may sense p once and leave m = 0 for good. The
@@ -131,7 +131,7 @@ TEST(SymbolicLiveness, ASliceFarBeyondTheBudgetIsDecidedSymbolically) {
 // explicit search proves the property it finds nothing.
 TEST(SymbolicLiveness, AHuntForQuietLoopsFindsOnlyRealViolations) {
   int found = 0, violations = 0;
-  forEachRandomProperty(300, [&](const ir::Model& m, const LivenessResult& reference, std::size_t k) {
+  forEachRandomProperty(test::randomModels(300), [&](const ir::Model& m, const LivenessResult& reference, std::size_t k) {
     detail::SymbolicLimits quiet;
     quiet.quietLoop = true;
     const SymbolicOutcome s = detail::decideSymbolically(m, k, quiet);
@@ -147,7 +147,7 @@ TEST(SymbolicLiveness, AHuntForQuietLoopsFindsOnlyRealViolations) {
     }
   });
   // Most violations of these models have a quiet loop; not all (some need the world's help).
-  EXPECT_GT(found, 50);
+  EXPECT_GT(found, test::atLeast(50));
   EXPECT_LE(found, violations);
 }
 
@@ -156,7 +156,7 @@ TEST(SymbolicLiveness, AHuntForQuietLoopsFindsOnlyRealViolations) {
 // passes the independent check; what it does not find, it leaves unknown with the reason.
 TEST(SymbolicLiveness, TheHuntOnTheConeReportsOnlyRebuiltViolations) {
   int hunted = 0;
-  forEachRandomProperty(300, [&](const ir::Model& m, const LivenessResult& reference, std::size_t k) {
+  forEachRandomProperty(test::randomModels(300), [&](const ir::Model& m, const LivenessResult& reference, std::size_t k) {
     const CompiledModel cm(m);
     detail::SlicedOutcome out;
     detail::huntOnCone(cm, k, SearchLimits{}, out);
@@ -171,7 +171,7 @@ TEST(SymbolicLiveness, TheHuntOnTheConeReportsOnlyRebuiltViolations) {
     ASSERT_TRUE(out.property.counterexample.has_value());
     EXPECT_TRUE(checkLasso(m, *out.property.counterexample, m.properties[k]).counterexample());
   });
-  EXPECT_GT(hunted, 50);
+  EXPECT_GT(hunted, test::atLeast(50));
 }
 
 TEST(SymbolicLiveness, ANodeTableTooSmallGivesUpAndTheNextSearchStillWorks) {
