@@ -171,6 +171,7 @@ checker::VerifyOptions verifyOptions(const CheckOptions& options, ProgressLine* 
   if (line != nullptr) {
     v.limits.onPhase = [line](const std::string& what) { line->phase(what); };
     v.smt.onPhase = v.limits.onPhase;
+    v.bounds.onPhase = v.limits.onPhase;  // emit: the task graphs' proofs come after the searches
     v.limits.onProgress = [line](const checker::Progress& p) { line->searched(p); };
   }
   return v;
