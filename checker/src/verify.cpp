@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "semo/checker/fingerprint.hpp"
 
@@ -228,9 +229,82 @@ void runSmt(Report& out, const ir::Model& model, const model::MissionModel* miss
   out.exitCode = violated ? 1 : undecided ? 3 : 0;
 }
 
+// The counter abstraction (counter_abstraction.hpp) on a model with team counts; false when it
+// does not apply (Report::counting says why).
+bool runCounting(Report& out, const ir::Model& model, const VerifyOptions& options) {
+  CountingOptions counting;
+  counting.onPhase = options.limits.onPhase;
+  counting.maxStates = std::min<std::uint64_t>(options.limits.maxStates, kAutoStateBudget);
+  out.counting = checkByCounting(model, options.smt.lemmas, counting);
+  return out.counting->applicable;
+}
+
+bool countingDecides(const CountingResult& c, bool safetyOnly) {
+  if (!c.applicable) return false;
+  if (!safetyOnly) return c.allProven();
+  auto proven = [](const CountingVerdict& v) { return v.verdict == Verdict::Proven; };
+  return std::all_of(c.invariants.begin(), c.invariants.end(), proven) && (!c.deadlockChecked || proven(c.deadlock));
+}
+
+// The counter abstraction's verdicts, as the report's.
+void countingVerdicts(Report& out, const ir::Model& model, bool safetyOnly) {
+  const CountingResult& c = *out.counting;
+  out.engine = Engine::Counting;
+  out.safety.states = c.states;
+  out.safety.transitions = c.transitions;
+  out.safety.complete = c.applicable;
+  out.safety.seconds = c.seconds;
+  if (!c.applicable) out.safety.limitReached = "the counter abstraction does not apply: " + c.why;
+  const std::string counted = std::to_string(c.robots) + " robots counted per local state (0, 1, " + std::to_string(c.threshold) + " or more)";
+  auto add = [&](const CountingVerdict* cv, const std::string& name, const std::string& origin, PropertyVerdict::Kind kind, bool settled) {
+    PropertyVerdict v;
+    v.name = name;
+    v.origin = origin;
+    v.kind = kind;
+    v.engine = "counting";
+    if (cv == nullptr) {
+      v.coverage = c.applicable ? "not checked: --safety-only" : "the counter abstraction does not apply: " + c.why;
+    } else if (cv->verdict == Verdict::Proven) {
+      v.verdict = Verdict::Proven;
+      v.proof = ProofKind::Counting;
+      const std::string apart = cv->explicitRobots.empty() ? "" : ", " + fmt::format("{}", fmt::join(cv->explicitRobots, ", ")) + " apart";
+      v.coverage = (kind == PropertyVerdict::Kind::Safety ? "all " + std::to_string(c.states) + " states"
+                                                          : "every fair run" + std::string(settled ? " (settled or not)" : "")) +
+                   " of the counter abstraction (" + counted + apart + ", " + std::to_string(c.localStates) + " local states" +
+                   (kind == PropertyVerdict::Kind::Liveness ? ", " + std::to_string(cv->productStates) + " product states" : "") +
+                   "), under the assumptions above";
+    } else {
+      v.coverage = "undecided by the counter abstraction: " + cv->why;
+    }
+    out.properties.push_back(std::move(v));
+  };
+  for (std::size_t i = 0; i < model.invariants.size(); ++i) {
+    add(i < c.invariants.size() ? &c.invariants[i] : nullptr, model.invariants[i].name, model.invariants[i].origin, PropertyVerdict::Kind::Safety, false);
+  }
+  if (model.validEnd) add(c.deadlockChecked ? &c.deadlock : nullptr, "deadlock_freedom", "", PropertyVerdict::Kind::Safety, false);
+  if (safetyOnly && !model.properties.empty()) out.livenessSkipped = "not checked: --safety-only";
+  for (std::size_t k = 0; k < model.properties.size(); ++k) {
+    const ir::Property& p = model.properties[k];
+    add(safetyOnly || k >= c.properties.size() ? nullptr : &c.properties[k], p.name, p.origin, PropertyVerdict::Kind::Liveness, p.settled);
+  }
+  out.exitCode = countingDecides(c, safetyOnly) ? 0 : 3;
+}
+
 void runExplicit(Report& out, const ir::Model& model, const model::MissionModel* mission, const VerifyOptions& options,
                  const SourceManager& sources) {
   const bool automatic = options.engine == Engine::Auto;
+  std::string counted;
+  if (automatic && !options.smt.lemmas.empty()) {
+    // A team with counts: counting first, whose cost does not grow with the team.
+    if (runCounting(out, model, options) && countingDecides(*out.counting, options.safetyOnly)) {
+      out.engineReason = "a team of " + std::to_string(out.counting->robots) +
+                         " interchangeable robots, counted per local state: the counter abstraction proves every property";
+      countingVerdicts(out, model, options.safetyOnly);
+      return;
+    }
+    const CountingResult& c = *out.counting;
+    counted = c.applicable ? "the counter abstraction left properties undecided, so " : "the counter abstraction does not apply (" + c.why + "), so ";
+  }
   SearchLimits limits = options.limits;
   if (automatic) {
     // The probe is never depth-bounded: a bound is for BMC, should smt be chosen.
@@ -243,14 +317,14 @@ void runExplicit(Report& out, const ir::Model& model, const model::MissionModel*
   if (automatic) {
     const bool found = r.rangeError.has_value() || anyViolated(r.properties);
     if (!r.complete && !found && !r.depthBounded) {
-      out.engineReason = "the explicit search did not cover the state space within its budget of " + std::to_string(limits.maxStates) +
+      out.engineReason = counted + "the explicit search did not cover the state space within its budget of " + std::to_string(limits.maxStates) +
                          " states (stopped after " + std::to_string(r.states) + "), so smt; the LTL properties on slices of the model " +
                          "(cone of influence, refined by counterexamples), never on the whole product";
       runSmt(out, model, mission, options, sources);
       return;
     }
-    out.engineReason = found ? "explicit search found a violation within its budget of " + std::to_string(kAutoStateBudget) + " states"
-                             : "the state space fits the explicit engine's budget of " + std::to_string(kAutoStateBudget) + " states";
+    out.engineReason = counted + (found ? "explicit search found a violation within its budget of " + std::to_string(kAutoStateBudget) + " states"
+                                        : "the state space fits the explicit engine's budget of " + std::to_string(kAutoStateBudget) + " states");
     if (options.liveness.slicing) out.engineReason += "; the LTL properties on slices of the model first, on the whole product where no slice decides";
     limits.maxStates = options.limits.maxStates;  // the liveness products get the usual limit
   }
@@ -311,6 +385,7 @@ const char* proofKindName(ProofKind k) {
     case ProofKind::KInduction: return "k-induction";
     case ProofKind::Ic3: return "IC3 invariant";
     case ProofKind::Z3Formation: return "Z3, every crash set";
+    case ProofKind::Counting: return "counter abstraction";
   }
   return "none";
 }
@@ -390,7 +465,7 @@ void addVacuousVerdicts(Report& out, const ir::Model& model, const model::Missio
     v.kind = check == "mode_agreement" || check == "knowledge_convergence" || check == "leader_reelection" ? PropertyVerdict::Kind::Liveness
                                                                                                       : PropertyVerdict::Kind::Safety;
     v.verdict = Verdict::Proven;
-    v.engine = out.engine == Engine::Smt ? "smt" : "explicit";
+    v.engine = out.engine == Engine::Smt ? "smt" : out.engine == Engine::Counting ? "counting" : "explicit";
     v.vacuous = why;
     v.coverage = "vacuous: " + why;
     out.properties.push_back(std::move(v));
@@ -413,8 +488,14 @@ std::optional<Report> verify(const ir::Model& model, const model::MissionModel* 
   out.modelFingerprint = modelFingerprint(model);
   out.assumptions = model.assumptions;
   if (options.properties) {
-    if (options.engine == Engine::Smt) runSmt(out, model, mission, options, diags.sources());
-    else runExplicit(out, model, mission, options, diags.sources());
+    if (options.engine == Engine::Smt) {
+      runSmt(out, model, mission, options, diags.sources());
+    } else if (options.engine == Engine::Counting) {
+      runCounting(out, model, options);
+      countingVerdicts(out, model, options.safetyOnly);
+    } else {
+      runExplicit(out, model, mission, options, diags.sources());
+    }
     if (mission != nullptr) addVacuousVerdicts(out, model, *mission, options.propertyGlobs);
   }
   if (options.taskGraphs && mission != nullptr) {

@@ -78,7 +78,7 @@ Json propertiesJson(const checker::Report& report) {
 
 Json verificationJson(const checker::Report& report) {
   const checker::SearchResult& s = report.safety;
-  Json j = {{"engine", report.engine == checker::Engine::Smt ? "smt" : "explicit"}};
+  Json j = {{"engine", report.engine == checker::Engine::Smt ? "smt" : report.engine == checker::Engine::Counting ? "counting" : "explicit"}};
   if (!report.engineReason.empty()) j["engineChoice"] = report.engineReason;
   if (report.engine == checker::Engine::Smt) {
     j["bmcDepth"] = report.smt->bmcDepth;
@@ -89,7 +89,7 @@ Json verificationJson(const checker::Report& report) {
     j["symmetry"] = s.symmetry;
     j["livenessProductStates"] = report.liveness.states;
   }
-  j["complete"] = s.complete && (report.engine == checker::Engine::Smt || report.liveness.complete);
+  j["complete"] = s.complete && (report.engine != checker::Engine::Explicit || report.liveness.complete);
   j["exitCode"] = report.exitCode;
   return j;
 }

@@ -135,10 +135,15 @@ void announceSearch(const BuiltModel& built, const CheckOptions& o, ProgressLine
   const std::string ltl = o.safetyOnly || m.properties.empty() ? std::string()
                           : o.slicing ? "; then each LTL property on its product, searched whole if the state space is small, else on slices of the model refined by counterexamples"
                                       : "; then each LTL property on its product with the whole model";
-  if (o.engine == "smt") {
+  if (o.engine == "counting") {
+    text += "the counter abstraction: the robots of the team counted per local state";
+  } else if (o.engine == "smt") {
     text += "Z3: bounded model checking" + (o.maxDepth != UINT32_MAX ? " to depth " + std::to_string(o.maxDepth) : std::string(" to depth 5")) +
             (o.bmcOnly ? "" : ", then k-induction and IC3") + " (safety properties only)";
   } else if (o.engine == "auto") {
+    if (built.translation && !built.translation->lowering.countDefinitions.empty()) {
+      text += "the counter abstraction (the team's robots counted per local state); where it leaves a property undecided, ";
+    }
     text += explicitSearch + " within 2,000,000 states, else Z3 (bounded model checking, k-induction, IC3)" + ltl;
   } else {
     text += explicitSearch + ltl;
@@ -150,7 +155,10 @@ void announceSearch(const BuiltModel& built, const CheckOptions& o, ProgressLine
 
 checker::VerifyOptions verifyOptions(const CheckOptions& options, ProgressLine* line) {
   checker::VerifyOptions v;
-  v.engine = options.engine == "smt" ? checker::Engine::Smt : options.engine == "auto" ? checker::Engine::Auto : checker::Engine::Explicit;
+  v.engine = options.engine == "smt"        ? checker::Engine::Smt
+             : options.engine == "auto"     ? checker::Engine::Auto
+             : options.engine == "counting" ? checker::Engine::Counting
+                                            : checker::Engine::Explicit;
   v.limits.maxStates = options.maxStates;
   v.limits.maxMemoryBytes = options.maxMemoryMiB << 20;
   v.limits.maxDepth = options.maxDepth;

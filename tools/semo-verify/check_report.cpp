@@ -87,6 +87,21 @@ std::string reportText(const checker::Report& r, const ir::Model& model, const s
     counterexamples(out, r, model);
     return out;
   }
+  if (r.engine == checker::Engine::Counting) {
+    const checker::CountingResult& c = *r.counting;
+    out += "engine:      counting: the robots of one team counted per local state (0, 1, " + std::to_string(c.threshold) + " or more)";
+    out += r.engineReason.empty() ? "\n" : " (--engine auto: " + r.engineReason + ")\n";
+    if (c.applicable) {
+      out += "explored:    " + std::to_string(c.robots) + " robots, " + std::to_string(c.localStates) + " local states of one robot, " +
+             std::to_string(c.states) + " abstract states, " + std::to_string(c.transitions) + " transitions (complete), " + fmtSeconds(c.seconds) + " s\n";
+    } else {
+      out += "explored:    nothing: the counter abstraction does not apply (" + c.why + ")\n";
+    }
+    verdictLines(out, r, Kind::Safety);
+    if (!r.livenessSkipped.empty()) out += "liveness:    " + r.livenessSkipped + "\n";
+    verdictLines(out, r, Kind::Liveness);
+    return out;
+  }
   if (!r.engineReason.empty()) out += "engine:      explicit (--engine auto: " + r.engineReason + ")\n";
   for (const std::string& c : s.symmetry) out += "symmetry:    interchangeable " + c + "\n";
   out += "explored:    " + std::to_string(s.states) + " states, " + std::to_string(s.transitions) + " transitions, depth " +
@@ -147,6 +162,7 @@ nlohmann::json reportJson(const checker::Report& r, const ir::Model& model, cons
   const checker::SearchResult& s = r.safety;
   json props = json::array();
   const bool smt = r.engine == checker::Engine::Smt;
+  const bool counting = r.engine == checker::Engine::Counting;
   std::size_t invariant = 0, ltl = 0;
   for (const PropertyVerdict& p : r.properties) {
     if (p.kind == Kind::GroupFormation) continue;  // in "groupFormation"
@@ -164,7 +180,7 @@ nlohmann::json reportJson(const checker::Report& r, const ir::Model& model, cons
       if (r.smt->deepCounterexample[j] != 0) jp["beyondBmcDepth"] = true;
     }
     if (p.kind == Kind::Liveness) {
-      if (smt) jp["note"] = p.coverage;
+      if (smt || counting) jp["note"] = p.coverage;
       else if (ltl < r.liveness.notes.size() && !r.liveness.notes[ltl].empty()) jp["note"] = r.liveness.notes[ltl];
       if (ltl < r.liveness.methods.size() && r.livenessSkipped.empty()) {
         const checker::LivenessMethod& m = r.liveness.methods[ltl];
@@ -193,6 +209,8 @@ nlohmann::json reportJson(const checker::Report& r, const ir::Model& model, cons
     } else {
       ++invariant;
     }
+    if (p.proof == checker::ProofKind::Counting) jp["proof"] = "counting";
+    if (counting && p.verdict != checker::Verdict::Proven && p.vacuous.empty()) jp["note"] = p.coverage;
     if (p.counterexample) jp["counterexample"] = traceJson(*p.counterexample);
     if (!p.vacuous.empty()) jp["vacuous"] = p.vacuous;
     props.push_back(jp);
@@ -215,6 +233,15 @@ nlohmann::json reportJson(const checker::Report& r, const ir::Model& model, cons
     }
     root["groupFormation"] = formation;
     if (!r.smt->note.empty()) root["note"] = r.smt->note;
+    return root;
+  }
+  if (counting) {
+    const checker::CountingResult& c = *r.counting;
+    root["engine"] = "counting";
+    root["states"] = s.states;
+    root["transitions"] = s.transitions;
+    root["counting"] = {{"applicable", c.applicable}, {"robots", c.robots}, {"localStates", c.localStates}, {"threshold", c.threshold}};
+    if (!s.limitReached.empty()) root["limit"] = s.limitReached;
     return root;
   }
   root["engine"] = "explicit";

@@ -120,8 +120,10 @@ int run(int argc, char** argv) {
     cmd->add_option("--engine", check.engine,
                     "explicit: state-space search (default); smt: Z3, bounded model checking to --max-depth (default 5), "
                     "then k-induction and IC3 for unbounded proofs, safety properties only; auto: explicit when the state "
-                    "space fits its budget (2,000,000 states, whatever --max-depth says), else smt (with --max-depth for BMC)")
-        ->check(CLI::IsMember({"explicit", "smt", "auto"}));
+                    "space fits its budget (2,000,000 states, whatever --max-depth says), else smt (with --max-depth for BMC); "
+                    "a team with counts (more than 8 robots) is first tried by counting; counting: the counter abstraction only, "
+                    "robots of one team counted per local state (proves, never refutes)")
+        ->check(CLI::IsMember({"explicit", "smt", "auto", "counting"}));
     cmd->add_flag("--bmc-only", check.bmcOnly, "With the smt engine: bounded model checking only (no k-induction, no IC3)");
     cmd->add_option("--smt-timeout", check.smtTimeoutS,
                     "With the smt engine: give up a solver call (one BMC depth, one IC3 run) after this many seconds; 0: never (default 600)");

@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "semo/checker/counter_abstraction.hpp"
 #include "semo/checker/explicit_search.hpp"
 #include "semo/checker/group_formation.hpp"
 #include "semo/checker/liveness_search.hpp"
@@ -27,7 +28,9 @@
 
 namespace semo::checker {
 
-enum class Engine : std::uint8_t { Explicit, Smt, Auto };
+// Counting: the counter abstraction (counter_abstraction.hpp), for a team of interchangeable
+// robots with counts; it proves or leaves undecided, never finds a violation.
+enum class Engine : std::uint8_t { Explicit, Smt, Auto, Counting };
 
 struct VerifyOptions {
   bool properties = true;   // decide the model's properties (false: task graphs only, as `sdf` does)
@@ -57,6 +60,7 @@ enum class ProofKind : std::uint8_t {
   KInduction,      // smt: k-induction at `k`
   Ic3,             // smt: an inductive strengthening of `conjuncts` conjuncts, checked independently
   Z3Formation,     // smt: a valid assignment of live robots to groups for every crash set in the budget
+  Counting,        // counting: every state, or every fair run, of the counter abstraction
 };
 const char* proofKindName(ProofKind k);  // "complete search", "k-induction", ...
 
@@ -91,6 +95,7 @@ struct Report {
   // Figures of the searches, for those who print them.
   SearchResult safety;                     // explicit or smt: states, depth, coverage, model error
   std::optional<SmtResult> smt;            // the smt engine's proofs, per invariant
+  std::optional<CountingResult> counting;  // the counter abstraction, when it ran
   LivenessResult liveness;                 // explicit engine only
   std::string livenessSkipped;             // why the LTL properties were not checked ("" when they were)
   std::vector<FormationVerdict> formation;  // smt engine on a mission
