@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <memory>
 #include <set>
@@ -417,8 +419,20 @@ CountingResult checkByCounting(const ir::Model& model, const std::vector<ir::Exp
       v.verdict = Verdict::Proven;
     }
     v.productStates = product.size();
+    if (std::getenv("SEMO_DEBUG_COUNTING") != nullptr) std::fprintf(stderr, "[counting] %s: automaton %zu states, %zu atoms; abstraction %zu states; product %zu\n", prop.name.c_str(), ba.states.size(), ba.atoms.size(), pg.states.size(), product.size());
     out.properties.push_back(std::move(v));
   }
+  // Every team size from n0 on: the translation of a counted team is one template at every size
+  // (its robots' rules, the counts' terms, the rules of no robot), the robots named on their own
+  // are the same, and every count of robots beyond them starts at "K or more".
+  auto everySize = [&](CountingVerdict& v) {
+    if (v.verdict == Verdict::Proven && options.countedTeamsFrom > 0) {
+      v.everyTeamFrom = std::max(options.countedTeamsFrom, v.explicitRobots.size() + options.threshold);
+    }
+  };
+  for (CountingVerdict& v : out.invariants) everySize(v);
+  if (out.deadlockChecked) everySize(out.deadlock);
+  for (CountingVerdict& v : out.properties) everySize(v);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

@@ -235,6 +235,7 @@ bool runCounting(Report& out, const ir::Model& model, const VerifyOptions& optio
   CountingOptions counting;
   counting.onPhase = options.limits.onPhase;
   counting.maxStates = std::min<std::uint64_t>(options.limits.maxStates, kAutoStateBudget);
+  counting.countedTeamsFrom = options.countedTeamsFrom;
   out.counting = checkByCounting(model, options.smt.lemmas, counting);
   return out.counting->applicable;
 }
@@ -273,6 +274,8 @@ void countingVerdicts(Report& out, const ir::Model& model, bool safetyOnly) {
                    " of the counter abstraction (" + counted + apart + ", " + std::to_string(c.localStates) + " local states" +
                    (kind == PropertyVerdict::Kind::Liveness ? ", " + std::to_string(cv->productStates) + " product states" : "") +
                    "), under the assumptions above";
+      v.everyTeamFrom = cv->everyTeamFrom;
+      if (cv->everyTeamFrom > 0) v.coverage += "; the same for a team of any size from " + std::to_string(cv->everyTeamFrom) + " robots";
     } else {
       v.coverage = "undecided by the counter abstraction: " + cv->why;
     }

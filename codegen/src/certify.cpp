@@ -282,6 +282,7 @@ CertifyReport certify(const std::string& dir, const CertifyOptions& options, Sou
       vo.taskGraphs = true;
       vo.crashOverride = c->crash;
       vo.smt.lemmas = translation->lowering.countDefinitions;  // as emit verifies: the counts' definitions, for smt and counting
+      vo.countedTeamsFrom = TranslationOptions{}.countTeamsAbove + 1;
       DiagnosticEngine verifyDiags(inputs);
       std::optional<checker::Report> again = checker::verify(translation->model, &*mission, vo, verifyDiags);
       if (again) {

@@ -1,6 +1,6 @@
 #!/bin/sh
 # specs/{check,lint,sdf,analyze}.schema.json against real outputs: check (a safety violation with
-# both engines, a lasso, a lasso naming knowledge facts, vacuous checks, a selection), lint (clean, errors, notes), sdf (a mission, a
+# both engines, a lasso, counting (proven, not applicable), a lasso naming knowledge facts, vacuous checks, a selection), lint (clean, errors, notes), sdf (a mission, a
 # deadlocking graph), analyze (exact, estimated, two missions); a broken check output must fail.
 # Arguments: SEMO_VERIFY SOURCE_DIR WORK_DIR
 set -eu
@@ -15,6 +15,8 @@ keep check lasso tests/e2e/ir/retry_delivery_weak.ir
 keep check facts specs/defects/liveness/stuck_gossip.semo -s specs/defects/liveness/strategy.xml
 keep check vacuous tests/e2e/inputs/vacuous_checks.semo -s tests/diagnostics/common/strategy.xml
 keep check selection specs/examples/swarm/swarm3.semo -s specs/examples/swarm/strategy.xml --prop mode_agreement --loss events --crash 1:Swarm
+keep check counting specs/examples/swarm/swarm1000.semo -s specs/examples/swarm/strategy.xml --engine auto
+keep check counting_none specs/examples/chase/chase.semo -s specs/examples/chase/strategy.xml --engine counting
 keep lint clean specs/examples/scouting/scouting.semo -s specs/examples/scouting/strategy.xml
 keep lint errors tests/e2e/inputs/undefined_mode.semo -s specs/examples/scouting/strategy.xml
 keep lint notes tests/diagnostics/common/mission.semo -s tests/diagnostics/strategy/urdf_file_missing.xml
@@ -29,7 +31,7 @@ import json, pathlib, sys
 import jsonschema
 specs, work = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
 counts, validators = {}, {}
-for kind, expected in (("check", 7), ("lint", 3), ("sdf", 2), ("analyze", 4)):
+for kind, expected in (("check", 9), ("lint", 3), ("sdf", 2), ("analyze", 4)):
     schema = json.load(open(specs / f"{kind}.schema.json"))
     jsonschema.Draft202012Validator.check_schema(schema)
     validators[kind] = validator = jsonschema.Draft202012Validator(schema)

@@ -224,7 +224,10 @@ int runCheck(const CheckOptions& options) {
     }
     verify.propertyGlobs = globs;
   }
-  if (built->translation) verify.smt.lemmas = built->translation->lowering.countDefinitions;  // the SMT engine proves them first
+  if (built->translation) {
+    verify.smt.lemmas = built->translation->lowering.countDefinitions;  // the SMT engine proves them first; counting reads them
+    verify.countedTeamsFrom = TranslationOptions{}.countTeamsAbove + 1;
+  }
   announceSearch(*built, options, line);
   std::optional<checker::Report> report =
       checker::verify(*built->model, built->mission ? &*built->mission : nullptr, verify, diags);

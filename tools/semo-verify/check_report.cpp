@@ -210,6 +210,7 @@ nlohmann::json reportJson(const checker::Report& r, const ir::Model& model, cons
       ++invariant;
     }
     if (p.proof == checker::ProofKind::Counting) jp["proof"] = "counting";
+    if (p.everyTeamFrom > 0) jp["everyTeamSizeFrom"] = p.everyTeamFrom;
     if (counting && p.verdict != checker::Verdict::Proven && p.vacuous.empty()) jp["note"] = p.coverage;
     if (p.counterexample) jp["counterexample"] = traceJson(*p.counterexample);
     if (!p.vacuous.empty()) jp["vacuous"] = p.vacuous;

@@ -123,7 +123,10 @@ int runEmit(const EmitOptions& options) {
   verify.taskGraphs = true;
   verify.bounds.timeoutMs = options.proofTimeoutMs;
   DiagnosticEngine diags(built->sources);
-  if (built->translation) verify.smt.lemmas = built->translation->lowering.countDefinitions;  // the SMT engine proves them first
+  if (built->translation) {
+    verify.smt.lemmas = built->translation->lowering.countDefinitions;  // the SMT engine proves them first; counting reads them
+    verify.countedTeamsFrom = TranslationOptions{}.countTeamsAbove + 1;
+  }
   announceSearch(*built, options.check, line);
   std::optional<checker::Report> report = checker::verify(*built->model, &*built->mission, verify, diags);
   line.stop();

@@ -33,6 +33,9 @@ struct CountingOptions {
   std::uint64_t maxStates = 2'000'000;  // abstract states (and product states per property)
   std::uint32_t threshold = 2;           // K: counts are exact below it
   std::function<void(const std::string&)> onPhase;  // "counting: all_turn_back", for progress lines
+  // The model is a mission's translation, whose teams get counts from this many robots on (0: not
+  // known to be). Then a proof covers every team size from there (CountingVerdict::everyTeamFrom).
+  std::size_t countedTeamsFrom = 0;
 };
 
 struct CountingVerdict {
@@ -41,6 +44,9 @@ struct CountingVerdict {
   std::string why;                     // Unknown: what the abstraction found or could not do
   std::vector<std::string> explicitRobots;  // kept outside the counts for this property
   std::uint64_t productStates = 0;     // LTL properties
+  // Proven, on a mission's translation: the same abstraction, so the same proof, for a team of any
+  // size N >= everyTeamFrom (specs/ir.md, "Counter abstraction"); 0 otherwise.
+  std::size_t everyTeamFrom = 0;
 };
 
 struct CountingResult {

@@ -45,6 +45,8 @@ struct VerifyOptions {
   // --prop: only the group formation verdicts whose names match one of these (all when empty); the
   // model's own properties are chosen with selectProperties before verify().
   std::vector<std::string> propertyGlobs;
+  // A mission's teams get counts from this many robots on (CountingOptions::countedTeamsFrom).
+  std::size_t countedTeamsFrom = 0;
   sdf::BoundsOptions bounds;
 };
 
@@ -78,6 +80,8 @@ struct PropertyVerdict {
   // A check the verify block names that has nothing to check in this mission (buffer_bounds without
   // any send): proven, and why it holds vacuously. Empty otherwise.
   std::string vacuous;
+  // Counting: proven for a team of any size from this many robots (0: for this team only).
+  std::size_t everyTeamFrom = 0;
 };
 const char* propertyKindName(PropertyVerdict::Kind k);  // "safety", "liveness", "group formation"
 
