@@ -5,8 +5,11 @@
 #   - the model: `export --ir` size (bytes, rules) and time;
 #   - the safety search with symmetry (`check --safety-only`, one state per ordering of the
 #     interchangeable robots): states, transitions, seconds, peak memory;
-#   - the whole check as a user runs it (safety and the three LTL properties): seconds, peak memory,
-#     verdicts, product states of each property.
+#   - the whole check with the explicit engine (safety and the three LTL properties): seconds, peak
+#     memory, verdicts, product states of each property;
+#   - the whole check with `--engine auto`, which counts the robots per local state (the counter
+#     abstraction, specs/ir.md): seconds, peak memory, abstract states, verdicts, and the team size
+#     from which its proofs hold.
 # Each run is cut at TIME_LIMIT seconds (default 300) and reported as such. SPIN's figures for the
 # same model are in swarm_bench.sh (N <= 10: beyond, pan does not finish without symmetry).
 #
@@ -34,7 +37,7 @@ timed() {
   echo "$(cat "$work/time" | tail -1) $rc"
 }
 
-printf '%-5s | %-28s | %-48s | %s\n' N "export --ir: bytes, rules, s" "safety (symmetry): states, transitions, s, MiB" "whole check: s, MiB, verdicts; product states per LTL property"
+printf '%-5s | %-28s | %-48s | %-60s | %s\n' N "export --ir: bytes, rules, s" "safety (symmetry): states, transitions, s, MiB" "whole check, explicit: s, MiB, verdicts; product states per LTL property" "whole check, auto (counting): s, MiB, abstract states, verdicts, every N from"
 for n in "${sizes[@]}"; do
   sed "s/legged\[10\]/legged[$n]/" "$work/swarm10.semo" >"$work/swarm_n.semo"
   common=("$work/swarm_n.semo" --strategy "$work/strategy.xml")
@@ -70,5 +73,20 @@ print("%s, %d, %s; %s" % (sys.argv[2], int(sys.argv[3]) // 1024, " ".join("%d %s
   else
     whole="over ${limit} s"
   fi
-  printf '%-5s | %-28s | %-48s | %s\n' "$n" "$model" "$safety" "$whole"
+  read -r secs kib rc <<<"$(timed "$work/counting.json" check "${common[@]}" --engine auto --json)"
+  if [ -s "$work/counting.json" ]; then
+    counting="$(python3 -c '
+import json, sys
+d = json.load(open(sys.argv[1]))
+verdicts = {}
+for p in d["properties"]:
+    verdicts[p["verdict"]] = verdicts.get(p["verdict"], 0) + 1
+sizes = sorted({p["everyTeamSizeFrom"] for p in d["properties"] if "everyTeamSizeFrom" in p})
+print("%s, %d, %s (%s), %s; %s" % (sys.argv[2], int(sys.argv[3]) // 1024, d.get("states", "-"), d["engine"],
+      " ".join("%d %s" % (v, k) for k, v in sorted(verdicts.items())), ", ".join(map(str, sizes)) or "-"))
+' "$work/counting.json" "$secs" "$kib")"
+  else
+    counting="over ${limit} s"
+  fi
+  printf '%-5s | %-28s | %-48s | %-60s | %s\n' "$n" "$model" "$safety" "$whole" "$counting"
 done

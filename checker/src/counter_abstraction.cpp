@@ -425,9 +425,15 @@ CountingResult checkByCounting(const ir::Model& model, const std::vector<ir::Exp
   // Every team size from n0 on: the translation of a counted team is one template at every size
   // (its robots' rules, the counts' terms, the rules of no robot), the robots named on their own
   // are the same, and every count of robots beyond them starts at "K or more".
+  // A shared variable's range may come from the team's size: a crash budget larger than the team
+  // is cut to it. Past the largest such range the translation no longer depends on the size; a
+  // range that reaches the team's size may have been cut, and then no size but this one is claimed.
+  std::int64_t shared = 0;
+  for (ir::VarId v : team->globals) shared = std::max<std::int64_t>(shared, model.variables[v].max);
+  const bool cut = shared >= static_cast<std::int64_t>(team->robots.size());
   auto everySize = [&](CountingVerdict& v) {
-    if (v.verdict == Verdict::Proven && options.countedTeamsFrom > 0) {
-      v.everyTeamFrom = std::max(options.countedTeamsFrom, v.explicitRobots.size() + options.threshold);
+    if (v.verdict == Verdict::Proven && options.countedTeamsFrom > 0 && !cut) {
+      v.everyTeamFrom = std::max({options.countedTeamsFrom, v.explicitRobots.size() + options.threshold, static_cast<std::size_t>(shared)});
     }
   };
   for (CountingVerdict& v : out.invariants) everySize(v);

@@ -211,6 +211,24 @@ TEST(CounterAbstraction, ProvesTheSwarmWithTheSameAbstractionForAnyTeamSize) {
   }
 }
 
+// With a threshold above the team's size no count is "K or more": the abstraction is exact, its
+// states are the orbits of the robots' permutations, as many as the explicit search stores with
+// symmetry (and every property it proves stays proven).
+TEST(CounterAbstraction, CountsAboveTheTeamsSizeAreTheSymmetricSearchsStates) {
+  auto t = swarm(10);
+  ASSERT_TRUE(t->translation);
+  const ir::Model& m = t->translation->model;
+  checker::CountingOptions exact;
+  exact.threshold = 11;
+  const checker::CountingResult c = checker::checkByCounting(m, t->translation->lowering.countDefinitions, exact);
+  ASSERT_TRUE(c.applicable) << c.why;
+  EXPECT_TRUE(c.allProven());
+  const checker::SearchResult s = checker::checkSafety(m, checker::SearchLimits{});
+  ASSERT_TRUE(s.complete);
+  EXPECT_EQ(c.states, s.states);
+  EXPECT_EQ(c.states, 861u);
+}
+
 TEST(CounterAbstraction, LeavesTheSwarmsFailingPropertiesUndecided) {
   // Four robots with counts (as a team of more than 8 has them), for the explicit search to refute
   // the failing properties quickly.
