@@ -306,7 +306,19 @@ void runExplicit(Report& out, const ir::Model& model, const model::MissionModel*
       return;
     }
     const CountingResult& c = *out.counting;
-    counted = c.applicable ? "the counter abstraction left properties undecided, so " : "the counter abstraction does not apply (" + c.why + "), so ";
+    if (c.applicable) {
+      std::vector<std::string> open;
+      for (const CountingVerdict& v : c.invariants) {
+        if (v.verdict != Verdict::Proven) open.push_back(v.name);
+      }
+      if (c.deadlockChecked && c.deadlock.verdict != Verdict::Proven) open.push_back(c.deadlock.name);
+      for (const CountingVerdict& v : c.properties) {
+        if (v.verdict != Verdict::Proven && !options.safetyOnly) open.push_back(v.name);
+      }
+      counted = "the counter abstraction left " + fmt::format("{}", fmt::join(open, ", ")) + " undecided, so ";
+    } else {
+      counted = "the counter abstraction does not apply (" + c.why + "), so ";
+    }
   }
   SearchLimits limits = options.limits;
   if (automatic) {
