@@ -37,6 +37,30 @@ timed() {
   echo "$(cat "$work/time" | tail -1) $rc"
 }
 
+# summary KIND JSON SECONDS KIB: a whole check's line (KIND explicit: the product states per LTL
+# property; counting: the abstract states and the team size its proofs hold from), or the limit.
+summary() {
+  if [ ! -s "$2" ]; then
+    echo "over ${limit} s"
+    return
+  fi
+  python3 -c '
+import json, sys
+kind, d = sys.argv[1], json.load(open(sys.argv[2]))
+verdicts = {}
+for p in d["properties"]:
+    verdicts[p["verdict"]] = verdicts.get(p["verdict"], 0) + 1
+tally = " ".join("%d %s" % (v, k) for k, v in sorted(verdicts.items()))
+head = "%s, %d" % (sys.argv[3], int(sys.argv[4]) // 1024)
+if kind == "explicit":
+    products = ["%s %s" % (p["name"].split("[")[0], p.get("search", {}).get("productStates", "-")) for p in d["properties"] if p["type"] == "liveness"]
+    print("%s, %s; %s" % (head, tally, ", ".join(products)))
+else:
+    sizes = sorted({p["everyTeamSizeFrom"] for p in d["properties"] if "everyTeamSizeFrom" in p})
+    print("%s, %s (%s), %s; %s" % (head, d.get("states", "-"), d["engine"], tally, ", ".join(map(str, sizes)) or "-"))
+' "$@"
+}
+
 printf '%-5s | %-28s | %-48s | %-60s | %s\n' N "export --ir: bytes, rules, s" "safety (symmetry): states, transitions, s, MiB" "whole check, explicit: s, MiB, verdicts; product states per LTL property" "whole check, auto (counting): s, MiB, abstract states, verdicts, every N from"
 for n in "${sizes[@]}"; do
   sed "s/legged\[10\]/legged[$n]/" "$work/swarm10.semo" >"$work/swarm_n.semo"
@@ -60,33 +84,8 @@ print("%s, %s, %s, %d" % (d["states"], d["transitions"], sys.argv[2], int(sys.ar
     safety="exit $rc (over ${limit} s, or a limit) after ${secs} s"
   fi
   read -r secs kib rc <<<"$(timed "$work/whole.json" check "${common[@]}" --json)"
-  if [ -s "$work/whole.json" ]; then
-    whole="$(python3 -c '
-import json, sys
-d = json.load(open(sys.argv[1]))
-verdicts = {}
-for p in d["properties"]:
-    verdicts[p["verdict"]] = verdicts.get(p["verdict"], 0) + 1
-products = ["%s %s" % (p["name"].split("[")[0], p.get("search", {}).get("productStates", "-")) for p in d["properties"] if p["type"] == "liveness"]
-print("%s, %d, %s; %s" % (sys.argv[2], int(sys.argv[3]) // 1024, " ".join("%d %s" % (v, k) for k, v in sorted(verdicts.items())), ", ".join(products)))
-' "$work/whole.json" "$secs" "$kib")"
-  else
-    whole="over ${limit} s"
-  fi
+  whole="$(summary explicit "$work/whole.json" "$secs" "$kib")"
   read -r secs kib rc <<<"$(timed "$work/counting.json" check "${common[@]}" --engine auto --json)"
-  if [ -s "$work/counting.json" ]; then
-    counting="$(python3 -c '
-import json, sys
-d = json.load(open(sys.argv[1]))
-verdicts = {}
-for p in d["properties"]:
-    verdicts[p["verdict"]] = verdicts.get(p["verdict"], 0) + 1
-sizes = sorted({p["everyTeamSizeFrom"] for p in d["properties"] if "everyTeamSizeFrom" in p})
-print("%s, %d, %s (%s), %s; %s" % (sys.argv[2], int(sys.argv[3]) // 1024, d.get("states", "-"), d["engine"],
-      " ".join("%d %s" % (v, k) for k, v in sorted(verdicts.items())), ", ".join(map(str, sizes)) or "-"))
-' "$work/counting.json" "$secs" "$kib")"
-  else
-    counting="over ${limit} s"
-  fi
+  counting="$(summary counting "$work/counting.json" "$secs" "$kib")"
   printf '%-5s | %-28s | %-48s | %-60s | %s\n' "$n" "$model" "$safety" "$whole" "$counting"
 done
