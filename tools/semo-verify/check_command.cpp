@@ -147,6 +147,10 @@ void announceSearch(const BuiltModel& built, const CheckOptions& o, ProgressLine
     text += explicitSearch + " within 2,000,000 states, else Z3 (bounded model checking, k-induction, IC3)" + ltl;
   } else {
     text += explicitSearch + ltl;
+    if (built.translation && !built.translation->lowering.countDefinitions.empty()) {
+      text += "\n  (the team has counts of its robots: --engine auto, or counting, searches them per local state, "
+              "at a cost that does not grow with the team)";
+    }
   }
   const bool large = m.robots.size() >= 50 || m.variables.size() >= 1000 || m.rules.size() >= 5000 || built.buildSeconds >= 2.0;
   if (large) line.say(text);
