@@ -130,7 +130,7 @@ Explicit explicitVerdicts(const ir::Model& m) {
 }
 
 TEST(CounterAbstraction, NeverProvesWhatTheExplicitSearchRefutesOnRandomTeams) {
-  int proven = 0, refutedByExplicit = 0, applicable = 0;
+  int proven = 0, refutedByExplicit = 0, applicable = 0, missed = 0;
   for (std::uint32_t seed = 1; seed <= test::randomModels(300); ++seed) {
     const RandomTeam t = randomTeam(seed);
     const ir::Model m = test::parseIr(t.text);
@@ -152,11 +152,15 @@ TEST(CounterAbstraction, NeverProvesWhatTheExplicitSearchRefutesOnRandomTeams) {
         EXPECT_EQ(expected[k], Verdict::Proven) << "seed " << seed << " property " << k << " proven by counting only\n" << t.text;
       }
       if (expected[k] == Verdict::Violated) ++refutedByExplicit;
+      if (expected[k] == Verdict::Proven && counted[k] != Verdict::Proven) ++missed;
     }
   }
   // Not vacuous: the abstraction proves many, and the explicit search refutes many it leaves open.
-  EXPECT_GE(proven, test::atLeast(150)) << applicable;
-  EXPECT_GE(refutedByExplicit, test::atLeast(100));
+  RecordProperty("proven", proven);
+  RecordProperty("refuted", refutedByExplicit);
+  RecordProperty("missed", missed);  // proven by the explicit search only (the abstraction is coarser)
+  EXPECT_GE(proven, test::atLeast(400)) << applicable;
+  EXPECT_GE(refutedByExplicit, test::atLeast(600));
 }
 
 std::string readFile(const std::string& path) {
