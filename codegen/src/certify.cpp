@@ -271,7 +271,10 @@ CertifyReport certify(const std::string& dir, const CertifyOptions& options, Sou
       report.rechecked = true;
       const EmitOptions& how = c->verify;
       checker::VerifyOptions vo;
-      vo.engine = how.engine == "smt" ? checker::Engine::Smt : how.engine == "auto" ? checker::Engine::Auto : checker::Engine::Explicit;
+      vo.engine = how.engine == "smt"        ? checker::Engine::Smt
+                  : how.engine == "auto"     ? checker::Engine::Auto
+                  : how.engine == "counting" ? checker::Engine::Counting
+                                             : checker::Engine::Explicit;
       vo.limits.maxStates = how.maxStates;
       vo.limits.maxDepth = how.maxDepth;
       vo.limits.symmetry = how.symmetry;

@@ -270,6 +270,23 @@ TEST(EmitDeterminism, SameInputsSameBytes) {
   EXPECT_TRUE(a == b);
 }
 
+// A team with counts certified by the counter abstraction: the certificate names the engine, and a
+// recheck verifies again with the same count definitions, to the same certificate.
+TEST(EmitCounting, TheSwarmOfTenCertifiedByCountingRechecksTheSame) {
+  const fs::path dir = workDir("emit_counting");
+  const std::string swarm10 = "specs/examples/swarm/swarm10.semo --strategy specs/examples/swarm/strategy.xml";
+  CliRun e = verify("emit " + swarm10 + " --engine counting --out '" + (dir / "gen").string() + "'", dir);
+  ASSERT_EQ(e.exit, 0) << e.out << e.err;
+  EXPECT_NE(e.out.find("certified (every property and every buffer bound proven)"), std::string::npos) << e.out;
+  const nlohmann::json cert = nlohmann::json::parse(slurp(dir / "gen/certificate.json"));
+  EXPECT_NE(cert.dump().find("\"engine\":\"counting\""), std::string::npos);
+  CliRun r = verify("certify --json --recheck '" + (dir / "gen").string() + "'", dir);
+  EXPECT_EQ(r.exit, 0) << r.out << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["valid"].get<bool>());
+  EXPECT_TRUE(j["rechecked"].get<bool>());
+}
+
 // A fresh tree, copied, then one edit per copy: certify names each (file, line, what).
 class CertifyEdits : public ::testing::Test {
  protected:
