@@ -32,13 +32,23 @@ void flatten(const Expr& e, Op op, std::vector<const Expr*>& out) {
   out.push_back(&e);
 }
 
-void readsRobots(const Expr& e, const Team& team, std::vector<char>& robots) {
+void collectRobots(const Expr& e, const Team& team, std::vector<std::size_t>& robots) {
   if (e.op == Op::Var) {
     const std::int32_t m = team.memberOf[static_cast<std::size_t>(e.value)];
-    if (m >= 0) robots[static_cast<std::size_t>(m)] = 1;
+    if (m >= 0) robots.push_back(static_cast<std::size_t>(m));
     return;
   }
-  for (const Expr& a : e.args) readsRobots(a, team, robots);
+  for (const Expr& a : e.args) collectRobots(a, team, robots);
+}
+
+// The robots whose variables `e` reads, ascending: a cost in the size of `e`, not of the team (a
+// property over 100,000 robots has 100,000 parts).
+std::vector<std::size_t> robotsRead(const Expr& e, const Team& team) {
+  std::vector<std::size_t> robots;
+  collectRobots(e, team, robots);
+  std::sort(robots.begin(), robots.end());
+  robots.erase(std::unique(robots.begin(), robots.end()), robots.end());
+  return robots;
 }
 
 // Whether `e` (of robot a) is `f` (of robot b) with a's variables for b's.
@@ -142,14 +152,12 @@ std::optional<Team> teamOf(const ir::Model& model, const std::vector<ir::Expr>& 
     flatten(d.args[1], Op::Add, terms);
     for (const Expr* t : terms) {
       if (t->op == Op::Const && t->value == 0) continue;
-      std::vector<char> reads(model.robots.size(), 0);
-      readsRobots(*t, team, reads);
-      if (std::count(reads.begin(), reads.end(), 1) != 1) {
+      const std::vector<std::size_t> reads = robotsRead(*t, team);
+      if (reads.size() != 1) {
         why = "a term of a count reads more than one robot";
         return std::nullopt;
       }
-      const auto r = static_cast<std::size_t>(std::find(reads.begin(), reads.end(), 1) - reads.begin());
-      c.term[r] = *t;
+      c.term[reads[0]] = *t;
     }
     team.countIndex[c.var] = static_cast<std::int32_t>(team.counts.size());
     team.counts.push_back(std::move(c));
@@ -334,11 +342,11 @@ std::optional<Range> evaluate(const ir::Expr& e, const Env& env) {
 
 std::optional<TeamFormula> teamFormula(const ir::Model& model, const Team& team, const ir::Expr& e, const std::vector<char>& explicitRobots,
                                        std::size_t representative, std::vector<std::size_t>& individual) {
-  std::vector<char> reads(team.robots.size(), 0);
-  readsRobots(e, team, reads);
-  bool counted = false;
-  for (std::size_t r = 0; r < reads.size(); ++r) counted = counted || (reads[r] != 0 && explicitRobots[r] == 0);
-  if (!counted) return TeamFormula{TeamFormula::Kind::Plain, e, {}};
+  std::vector<std::size_t> countedRead;
+  for (std::size_t r : robotsRead(e, team)) {
+    if (explicitRobots[r] == 0) countedRead.push_back(r);
+  }
+  if (countedRead.empty()) return TeamFormula{TeamFormula::Kind::Plain, e, {}};
   if (e.op == Op::Not) {
     auto inner = teamFormula(model, team, e.args[0], explicitRobots, representative, individual);
     if (!inner) return std::nullopt;
@@ -348,9 +356,7 @@ std::optional<TeamFormula> teamFormula(const ir::Model& model, const Team& team,
     return teamFormula(model, team, Expr::binary(Op::Or, Expr::unary(Op::Not, e.args[0]), e.args[1]), explicitRobots, representative, individual);
   }
   if (e.op != Op::And && e.op != Op::Or) {
-    for (std::size_t r = 0; r < reads.size(); ++r) {
-      if (reads[r] != 0 && explicitRobots[r] == 0) individual.push_back(r);
-    }
+    individual.insert(individual.end(), countedRead.begin(), countedRead.end());
     return std::nullopt;
   }
   std::vector<const Expr*> parts;
@@ -361,11 +367,9 @@ std::optional<TeamFormula> teamFormula(const ir::Model& model, const Team& team,
   std::vector<std::string> order;
   bool ok = true;
   for (const Expr* p : parts) {
-    std::fill(reads.begin(), reads.end(), 0);
-    readsRobots(*p, team, reads);
-    std::vector<std::size_t> countedRead;
-    for (std::size_t r = 0; r < reads.size(); ++r) {
-      if (reads[r] != 0 && explicitRobots[r] == 0) countedRead.push_back(r);
+    countedRead.clear();
+    for (std::size_t r : robotsRead(*p, team)) {
+      if (explicitRobots[r] == 0) countedRead.push_back(r);
     }
     if (countedRead.size() != 1) {
       auto sub = teamFormula(model, team, *p, explicitRobots, representative, individual);
