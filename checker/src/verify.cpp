@@ -290,7 +290,8 @@ void countingVerdicts(Report& out, const ir::Model& model, bool safetyOnly) {
     const ir::Property& p = model.properties[k];
     add(safetyOnly || k >= c.properties.size() ? nullptr : &c.properties[k], p.name, p.origin, PropertyVerdict::Kind::Liveness, p.settled);
   }
-  out.exitCode = countingDecides(c, safetyOnly) ? 0 : 3;
+  // As the explicit engine: LTL properties left unchecked (--safety-only) make a partial result.
+  out.exitCode = countingDecides(c, safetyOnly) && (!safetyOnly || model.properties.empty()) ? 0 : 3;
 }
 
 void runExplicit(Report& out, const ir::Model& model, const model::MissionModel* mission, const VerifyOptions& options,
