@@ -161,6 +161,10 @@ class Product {
     std::vector<std::uint32_t> all(state_.size());
     for (std::uint32_t n = 0; n < all.size(); ++n) all[n] = n;
     inSet_.assign(state_.size(), 0);
+    visited_.assign(state_.size(), 0);
+    index_.assign(state_.size(), 0);
+    low_.assign(state_.size(), 0);
+    onStack_.assign(state_.size(), 0);
     return search(all);
   }
 
@@ -176,15 +180,21 @@ class Product {
   std::vector<std::vector<std::uint32_t>> components(const std::vector<std::uint32_t>& nodes) {
     const std::uint32_t stamp = ++stamp_;
     for (std::uint32_t n : nodes) inSet_[n] = stamp;
-    std::unordered_map<std::uint32_t, std::uint32_t> index, low;
+    // Per node, kept across calls: a component searched again (Emerson-Lei's refinement, the
+    // finiteness compassion) costs its own size, not the product's.
+    const std::uint32_t visit = ++visit_;
+    auto seen = [&](std::uint32_t n) { return visited_[n] == visit; };
+    auto number = [&](std::uint32_t n, std::uint32_t k) { visited_[n] = visit, index_[n] = low_[n] = k; };
+    std::vector<std::uint32_t>& index = index_;
+    std::vector<std::uint32_t>& low = low_;
+    std::vector<char>& onStack = onStack_;
     std::vector<std::uint32_t> stack;
-    std::vector<char> onStack(state_.size(), 0);
     std::vector<std::vector<std::uint32_t>> out;
     std::uint32_t next = 0;
     std::vector<std::pair<std::uint32_t, std::uint32_t>> call;  // (node, next edge)
     for (std::uint32_t root : nodes) {
-      if (index.count(root) != 0) continue;
-      index[root] = low[root] = next++;
+      if (seen(root)) continue;
+      number(root, next++);
       stack.push_back(root);
       onStack[root] = 1;
       call.emplace_back(root, begin_[root]);
@@ -194,8 +204,8 @@ class Product {
           const std::uint32_t edge = e++;
           const std::uint32_t w = target_[edge];
           if (off_[edge] != 0 || inSet_[w] != stamp) continue;
-          if (index.count(w) == 0) {
-            index[w] = low[w] = next++;
+          if (!seen(w)) {
+            number(w, next++);
             stack.push_back(w);
             onStack[w] = 1;
             call.emplace_back(w, begin_[w]);
@@ -302,6 +312,9 @@ class Product {
   std::vector<char> off_;
   std::vector<std::uint32_t> inSet_;
   std::uint32_t stamp_ = 0;
+  std::vector<std::uint32_t> visited_, index_, low_;  // Tarjan's numbering, valid where visited_ is visit_
+  std::vector<char> onStack_;
+  std::uint32_t visit_ = 0;
 };
 
 }  // namespace
