@@ -16,7 +16,7 @@ namespace semo::checker::detail {
 
 namespace {
 
-using Clock = ThreadCpuClock;  // the budget is processor time (thread_cpu_clock.hpp)
+using CpuClock = ThreadCpuClock;  // the budget is processor time (thread_cpu_clock.hpp)
 using State = Stepper::State;
 
 std::uint64_t hashOf(const State& s) {
@@ -136,8 +136,8 @@ class Walker {
 
   LassoWalkOutcome run() {
     LassoWalkOutcome out;
-    const auto started = Clock::now();
-    auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - started).count(); };
+    const auto started = CpuClock::now();
+    auto elapsed = [&] { return std::chrono::duration<double>(CpuClock::now() - started).count(); };
     std::uint32_t stale = 0;
     // Once a lasso is found, as many walks again look for a shorter one (the shortest is kept).
     std::uint32_t lastWalk = limits_.walks;

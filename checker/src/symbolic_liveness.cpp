@@ -252,8 +252,8 @@ SymbolicOutcome decideSymbolically(const ir::Model& model, std::size_t property,
   const Fairness fairness = Fairness::of(model);
   const Sensing sensing = Sensing::in(model);
   std::lock_guard<std::mutex> hold(packageLock);
-  const auto start = Clock::now();
-  const auto deadline = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(limits.seconds));
+  const auto start = CpuClock::now();
+  const auto deadline = start + std::chrono::duration_cast<CpuClock::duration>(std::chrono::duration<double>(limits.seconds));
   packageError = 0;
   // BuDDy's node: about 20 bytes, and its operation caches a quarter as many entries again.
   const std::uint64_t nodes = std::clamp<std::uint64_t>(limits.maxMemoryBytes / 32, 10'000, 1u << 28);
@@ -272,13 +272,13 @@ SymbolicOutcome decideSymbolically(const ir::Model& model, std::size_t property,
   try {
     SymbolicProduct product(model, ba, fairness, deadline, limits.onProgress);
     if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) {
-      std::fprintf(stderr, "[symbolic] %zu rules compiled, %.1f s\n", model.rules.size(), std::chrono::duration<double>(Clock::now() - start).count());
+      std::fprintf(stderr, "[symbolic] %zu rules compiled, %.1f s\n", model.rules.size(), std::chrono::duration<double>(CpuClock::now() - start).count());
     }
     const bdd reach = product.reachable();
     out.reachable = product.count(reach);
     if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) {
       std::fprintf(stderr, "[symbolic] reachable: %.0f states, %d nodes, %.1f s\n", out.reachable, bdd_nodecount(reach),
-                   std::chrono::duration<double>(Clock::now() - start).count());
+                   std::chrono::duration<double>(CpuClock::now() - start).count());
     }
     // A step of a slice (or of the cone) that would leave a declared range is no step: the
     // relation has no such outcome (LivenessOptions::slice says why that is sound).
@@ -287,7 +287,7 @@ SymbolicOutcome decideSymbolically(const ir::Model& model, std::size_t property,
     out.worlds = search.worlds();
     if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) {
       std::fprintf(stderr, "[symbolic] fair states searched in %u worlds: %s, %.1f s\n", out.worlds, violated ? "some" : "none",
-                   std::chrono::duration<double>(Clock::now() - start).count());
+                   std::chrono::duration<double>(CpuClock::now() - start).count());
     }
     out.kind = violated ? SymbolicOutcome::Kind::Violation : SymbolicOutcome::Kind::NoViolation;
     if (violated && limits.lasso) {
@@ -303,7 +303,7 @@ SymbolicOutcome decideSymbolically(const ir::Model& model, std::size_t property,
   }
   bdd_done();
   packageError = 0;
-  out.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  out.seconds = std::chrono::duration<double>(CpuClock::now() - start).count();
   if (std::getenv("SEMO_DEBUG_SLICING") != nullptr || std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) {
     std::fprintf(stderr, "[slice]   symbolic: %s, %.0f reachable product states, %u worlds, %.1f s %s\n",
                  out.kind == SymbolicOutcome::Kind::NoViolation ? "no fair violation"

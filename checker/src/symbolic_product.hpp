@@ -24,7 +24,7 @@
 namespace semo::checker::detail {
 
 // Budgets count the thread's processor time (thread_cpu_clock.hpp).
-using Clock = ThreadCpuClock;
+using CpuClock = ThreadCpuClock;
 
 // BuDDy keeps one package per process (symbolic_liveness.cpp holds a lock for a whole search), and
 // its error hook records what went wrong (a full node table) instead of ending the process, as
@@ -72,7 +72,7 @@ inline std::int64_t evaluate(ir::Op op, std::int64_t a, std::int64_t b) {
 // the variable order, so that a step's relation stays small. The automaton's state comes first.
 class SymbolicProduct {
  public:
-  SymbolicProduct(const ir::Model& model, const Buchi& ba, const Fairness& fairness, Clock::time_point deadline,
+  SymbolicProduct(const ir::Model& model, const Buchi& ba, const Fairness& fairness, CpuClock::time_point deadline,
                   std::function<void(const Progress&)> onProgress = nullptr)
       : model_(model), ba_(ba), fairness_(fairness), deadline_(deadline), onProgress_(std::move(onProgress)) {
     int bits = 0;
@@ -394,7 +394,7 @@ class SymbolicProduct {
 
   void check() {
     if (packageError != 0) throw GiveUp(std::string("the decision diagrams: ") + bdd_errstring(packageError));
-    const auto now = Clock::now();
+    const auto now = CpuClock::now();
     if (now > deadline_) throw GiveUp("the time given to the symbolic search ran out");
     if (onProgress_ && now - lastProgress_ >= std::chrono::seconds(1)) {
       lastProgress_ = now;
@@ -557,10 +557,10 @@ class SymbolicProduct {
   const ir::Model& model_;
   const Buchi& ba_;
   const Fairness& fairness_;
-  const Clock::time_point deadline_;
+  const CpuClock::time_point deadline_;
   const std::function<void(const Progress&)> onProgress_;
-  const Clock::time_point started_ = Clock::now();
-  Clock::time_point lastProgress_ = Clock::now();
+  const CpuClock::time_point started_ = CpuClock::now();
+  CpuClock::time_point lastProgress_ = CpuClock::now();
   double progressStates_ = 0;
   std::uint32_t progressRound_ = 0;
   Layout automaton_;

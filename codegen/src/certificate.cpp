@@ -13,16 +13,16 @@ namespace semo::codegen {
 
 namespace {
 
-using Json = nlohmann::ordered_json;
+using OrderedJson = nlohmann::ordered_json;
 
 std::string fraction(const sdf::Period& p) { return std::to_string(p.num) + (p.den == 1 ? "" : "/" + std::to_string(p.den)); }
 
-Json boundsJson(const sdf::Graph& g, const sdf::ChosenBounds& b) {
-  Json caps = Json::object();
+OrderedJson boundsJson(const sdf::Graph& g, const sdf::ChosenBounds& b) {
+  OrderedJson caps = OrderedJson::object();
   for (std::size_t c = 0; c < g.channels.size(); ++c) {
     if (!g.channels[c].selfLoop()) caps[g.channels[c].name] = b.capacities[c];
   }
-  return Json{{"total", b.total},
+  return OrderedJson{{"total", b.total},
               {"periodMicros", fraction(b.period)},
               {"capacities", caps},
               {"schedule", sdf::scheduleText(g, b.schedule)},
@@ -30,12 +30,12 @@ Json boundsJson(const sdf::Graph& g, const sdf::ChosenBounds& b) {
               {"minimal", std::string(sdf::proofStatusName(b.minimality)) + " (Z3: one token less on any channel deadlocks, or the exact period grows)"}};
 }
 
-Json taskGraphsJson(const checker::Report& report) {
-  Json robots = Json::array();
+OrderedJson taskGraphsJson(const checker::Report& report) {
+  OrderedJson robots = OrderedJson::array();
   for (const checker::TaskGraphReport& r : report.taskGraphs) {
-    Json scenarios = Json::array();
+    OrderedJson scenarios = OrderedJson::array();
     for (const sdf::ScenarioAnalysis& a : r.analysis.scenarios) {
-      Json s = {{"scenario", a.scenario}, {"sound", a.sound()}};
+      OrderedJson s = {{"scenario", a.scenario}, {"sound", a.sound()}};
       if (a.iteration.deadlockFree && a.unbounded.error.empty()) s["periodMicros"] = fraction(a.unbounded.period);
       if (a.bounds.haveBounds) {
         s["deadlockFreeBounds"] = boundsJson(a.graph, a.bounds.deadlockFree);
@@ -43,20 +43,20 @@ Json taskGraphsJson(const checker::Report& report) {
       }
       scenarios.push_back(s);
     }
-    Json caps = Json::object();
+    OrderedJson caps = OrderedJson::object();
     for (std::size_t c = 0; c < r.graph.channels.size() && c < r.analysis.capacities.size(); ++c) {
       if (r.analysis.capacities[c] > 0) caps[r.graph.channels[c].name] = r.analysis.capacities[c];
     }
     robots.push_back({{"robot", r.graph.robot}, {"tasks", r.graph.tasks.size()}, {"channels", r.graph.channels.size()},
                       {"capacities", caps}, {"scenarios", scenarios}});
   }
-  return Json{{"assumptions", report.taskGraphAssumptions}, {"robots", robots}};
+  return OrderedJson{{"assumptions", report.taskGraphAssumptions}, {"robots", robots}};
 }
 
-Json propertiesJson(const checker::Report& report) {
-  Json out = Json::array();
+OrderedJson propertiesJson(const checker::Report& report) {
+  OrderedJson out = OrderedJson::array();
   for (const checker::PropertyVerdict& p : report.properties) {
-    Json j = {{"name", p.name},
+    OrderedJson j = {{"name", p.name},
               {"kind", checker::propertyKindName(p.kind)},
               {"verdict", checker::verdictName(p.verdict)},
               {"engine", p.engine},
@@ -76,9 +76,9 @@ Json propertiesJson(const checker::Report& report) {
   return out;
 }
 
-Json verificationJson(const checker::Report& report) {
+OrderedJson verificationJson(const checker::Report& report) {
   const checker::SearchResult& s = report.safety;
-  Json j = {{"engine", report.engine == checker::Engine::Smt ? "smt" : report.engine == checker::Engine::Counting ? "counting" : "explicit"}};
+  OrderedJson j = {{"engine", report.engine == checker::Engine::Smt ? "smt" : report.engine == checker::Engine::Counting ? "counting" : "explicit"}};
   if (!report.engineReason.empty()) j["engineChoice"] = report.engineReason;
   if (report.engine == checker::Engine::Smt) {
     j["bmcDepth"] = report.smt->bmcDepth;
@@ -124,22 +124,22 @@ std::vector<std::size_t> programRulesPerRobot(const Translation& translation, st
 std::string certificateJson(const model::MissionModel& /*mission*/, const Translation& translation, const SourceManager& sources,
                             const checker::Report& report, const EmitOptions& options, const Emitted& emitted) {
   const runtime::MissionTables& t = emitted.tables;
-  Json root = {{"format", "semo-certificate"}, {"version", kCertificateVersion}, {"certified", emitted.certified}};
+  OrderedJson root = {{"format", "semo-certificate"}, {"version", kCertificateVersion}, {"certified", emitted.certified}};
   if (!emitted.certified) root["unproven"] = emitted.unproven;
   root["tool"] = {{"name", "semo-verify"}, {"version", options.toolVersion}, {"compiler", compilerName()}, {"z3", checker::z3Version()}};
-  Json inputs = Json::array();
+  OrderedJson inputs = OrderedJson::array();
   for (std::size_t id = 0; id < sources.fileCount(); ++id) {
     const std::string& path = sources.path(static_cast<FileId>(id));
     inputs.push_back({{"role", inputRole(path, options)}, {"path", path}, {"sha256", checker::sha256Hex(sources.text(static_cast<FileId>(id)))}});
   }
   root["inputs"] = inputs;
-  Json build = Json::object();  // how the model was built from them (certify builds it again so)
+  OrderedJson build = OrderedJson::object();  // how the model was built from them (certify builds it again so)
   if (!options.robotsDir.empty()) build["robots"] = options.robotsDir;
   if (options.crash) build["crash"] = *options.crash;
   if (options.loss) build["loss"] = *options.loss;
   if (options.fairLoss) build["fairLoss"] = *options.fairLoss;
   root["modelOptions"] = build;
-  Json how = {{"engine", options.engine}, {"maxStates", options.maxStates}, {"symmetry", options.symmetry}, {"safetyOnly", options.safetyOnly},
+  OrderedJson how = {{"engine", options.engine}, {"maxStates", options.maxStates}, {"symmetry", options.symmetry}, {"safetyOnly", options.safetyOnly},
               {"bmcOnly", options.bmcOnly}, {"proofTimeoutMs", options.proofTimeoutMs}};
   if (options.maxDepth != UINT32_MAX) how["maxDepth"] = options.maxDepth;
   root["verifyOptions"] = how;
@@ -152,8 +152,8 @@ std::string certificateJson(const model::MissionModel& /*mission*/, const Transl
   root["taskGraphs"] = taskGraphsJson(report);
   root["runtime"] = {{"version", options.toolVersion}, {"tablesLayout", runtime::kTablesLayout}};
 
-  Json files = Json::array();
-  Json traceMap = Json::array();
+  OrderedJson files = OrderedJson::array();
+  OrderedJson traceMap = OrderedJson::array();
   for (const GeneratedFile& f : emitted.files) {
     files.push_back({{"path", f.path}, {"sha256", checker::sha256Hex(f.text)}});
   }
@@ -166,7 +166,7 @@ std::string certificateJson(const model::MissionModel& /*mission*/, const Transl
                         {"what", "the robot's step tables and task graph"}});
     for (const cpp::RowLine& l : cpp::rowLines(r, file->text)) {
       const runtime::Row& row = r.plans[l.plan].rows[l.row];
-      Json entry = {{"file", tablesFile}, {"line", l.line}, {"robot", r.name}, {"plan", r.plans[l.plan].name}, {"row", l.row}};
+      OrderedJson entry = {{"file", tablesFile}, {"line", l.line}, {"robot", r.name}, {"plan", r.plans[l.plan].name}, {"row", l.row}};
       if (row.irRule == runtime::kNone) {
         entry["irRule"] = nullptr;
         entry["what"] = "stutter: a walk that changes nothing the model sees";
@@ -183,7 +183,7 @@ std::string certificateJson(const model::MissionModel& /*mission*/, const Transl
   root["traceMap"] = traceMap;
 
   const std::vector<std::size_t> programRules = programRulesPerRobot(translation, t.robots.size());
-  Json robots = Json::array();
+  OrderedJson robots = OrderedJson::array();
   for (std::size_t r = 0; r < t.robots.size(); ++r) {
     std::size_t rows = 0, ruled = 0;
     for (const runtime::PlanTable& p : t.robots[r].plans) {

@@ -80,6 +80,9 @@ SimTrace emptyTrace(const MissionTables& tables, const World& world, const Simul
 // Team is a replica, kept from its Status and Pose packets, and what the simulator does to another
 // robot directly (an event's slot, a publish's message, an election) goes out as a packet instead
 // (team_node.cpp, specs/runtime.md "Networked robots").
+// What a lost packet was: Team::lose draws each kind's losses on its own link per receiver.
+enum LinkKind : Id { EventLink = 0, MessageLink = 1, HeartbeatLink = 2, GossipLink = 3 };
+
 struct NodeLink {
   Id self = kNone;
   Transport* transport = nullptr;

@@ -9,10 +9,6 @@
 
 namespace semo::runtime::detail {
 
-namespace {
-enum LinkKind : Id { EventLink = 0, MessageLink = 1, HeartbeatLink = 2, GossipLink = 3 };
-}  // namespace
-
 bool Team::lose(Id kind, Id receiver, bool lossy, std::int64_t retransmissions) {
   if (forcedLoss_ >= 0) return forcedLoss_ != 0;  // replay: the counterexample decides
   if (!lossy || options_.loss <= 0) return false;

@@ -24,7 +24,6 @@
 namespace semo::runtime::detail {
 
 namespace {
-enum LinkKind : Id { HeartbeatLink = 2, GossipLink = 3 };  // as team_network.cpp numbers them
 
 std::int32_t micrometres(double metres) {
   return static_cast<std::int32_t>(std::clamp(std::llround(metres * 1e6), -2147483647LL, 2147483647LL));

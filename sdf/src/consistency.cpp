@@ -13,11 +13,11 @@ __extension__ typedef __int128 Wide;  // GCC and Clang: products of two 64-bit c
 constexpr Wide kMax = INT64_MAX;
 
 // A positive rational in lowest terms, or nullopt past 64 bits.
-struct Ratio {
+struct Rate {
   std::int64_t num = 0, den = 1;
 };
 
-std::optional<Ratio> reduced(Wide num, Wide den) {
+std::optional<Rate> reduced(Wide num, Wide den) {
   Wide a = num, b = den;
   while (b != 0) {
     Wide t = a % b;
@@ -27,7 +27,7 @@ std::optional<Ratio> reduced(Wide num, Wide den) {
   num /= a;
   den /= a;
   if (num > kMax || den > kMax) return std::nullopt;
-  return Ratio{static_cast<std::int64_t>(num), static_cast<std::int64_t>(den)};
+  return Rate{static_cast<std::int64_t>(num), static_cast<std::int64_t>(den)};
 }
 
 // A flat single-appearance schedule (every actor's firings in one run) exists exactly when the
@@ -76,7 +76,7 @@ RepetitionVector repetitionVector(const Graph& g) {
     touching[g.channels[c].source].push_back(c);
     if (!g.channels[c].selfLoop()) touching[g.channels[c].target].push_back(c);
   }
-  std::vector<Ratio> rate(n);
+  std::vector<Rate> rate(n);
   std::vector<char> seen(n, 0);
   std::vector<std::int64_t> firings(n, 0);
   for (ActorId root = 0; root < n; ++root) {
@@ -94,7 +94,7 @@ RepetitionVector repetitionVector(const Graph& g) {
         ActorId other = forward ? ch.target : ch.source;
         Wide num = static_cast<Wide>(rate[a].num) * (forward ? ch.production : ch.consumption);
         Wide den = static_cast<Wide>(rate[a].den) * (forward ? ch.consumption : ch.production);
-        std::optional<Ratio> r = reduced(num, den);
+        std::optional<Rate> r = reduced(num, den);
         if (!r) {
           out.error = "the repetition counts exceed 64 bits (at channel " + ch.name + ")";
           return out;

@@ -15,11 +15,11 @@ Wide ceilDiv(Wide a, Wide b) { return -floorDiv(-a, b); }
 constexpr std::uint32_t kNone = UINT32_MAX;
 
 // A cycle's ratio, in lowest terms; delay > 0.
-struct Ratio {
+struct CycleRatio {
   std::int64_t time = 0, delay = 1;
 };
-bool greater(const Ratio& a, const Ratio& b) { return static_cast<Wide>(a.time) * b.delay > static_cast<Wide>(b.time) * a.delay; }
-bool same(const Ratio& a, const Ratio& b) { return a.time == b.time && a.delay == b.delay; }
+bool greater(const CycleRatio& a, const CycleRatio& b) { return static_cast<Wide>(a.time) * b.delay > static_cast<Wide>(b.time) * a.delay; }
+bool same(const CycleRatio& a, const CycleRatio& b) { return a.time == b.time && a.delay == b.delay; }
 
 }  // namespace
 
@@ -189,7 +189,7 @@ CycleRatioResult HsdfExpansion::evaluate(const std::vector<std::optional<std::in
       if (policy[v] == SIZE_MAX || edges[e].weight > edges[policy[v]].weight) policy[v] = e;
     }
   }
-  std::vector<Ratio> ratio(n);
+  std::vector<CycleRatio> ratio(n);
   std::vector<Wide> value(n);
   std::vector<std::uint32_t> visit(n, kNone);
   std::vector<std::size_t> cycleHeads;  // one node per policy cycle
@@ -227,7 +227,7 @@ CycleRatioResult HsdfExpansion::evaluate(const std::vector<std::optional<std::in
         }
         const auto d = static_cast<std::int64_t>(delay), t = static_cast<std::int64_t>(time);
         const std::int64_t common = std::gcd(t, d);
-        const Ratio r{t / common, d / common};
+        const CycleRatio r{t / common, d / common};
         // The cycle's reference node: its smallest, which keeps its value while the cycle's ratio
         // stays (with several cycles of one ratio, values measured from new references could make
         // the policy go round; kept, each switch raises a value and the iteration ends).

@@ -188,21 +188,21 @@ std::string readFile(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), {}};
 }
 
-struct Translated {
+struct TranslatedTeam {
   SourceManager sources;
   DiagnosticEngine diags{sources};
   std::optional<Translation> translation;
 };
 
 // The swarm example with its team line changed, and more properties.
-std::unique_ptr<Translated> swarm(int robots, const std::string& extra = "", std::size_t countTeamsAbove = TranslationOptions{}.countTeamsAbove) {
+std::unique_ptr<TranslatedTeam> swarm(int robots, const std::string& extra = "", std::size_t countTeamsAbove = TranslationOptions{}.countTeamsAbove) {
   const std::string dir = SEMO_SOURCE_DIR "/specs/examples/swarm/";
   std::string text = readFile(dir + "swarm10.semo");
   text.replace(text.find("legged[10]"), 10, "legged[" + std::to_string(robots) + "]");
   text.replace(text.find("  property all_turn_back"), 0, extra);
   const std::filesystem::path file = std::filesystem::temp_directory_path() / ("semo_counting_swarm" + std::to_string(robots) + ".semo");
   std::ofstream(file) << text;
-  auto t = std::make_unique<Translated>();
+  auto t = std::make_unique<TranslatedTeam>();
   auto m = loadMission({file.string(), dir + "strategy.xml", std::nullopt}, t->sources, t->diags);
   TranslationOptions options;
   options.countTeamsAbove = countTeamsAbove;

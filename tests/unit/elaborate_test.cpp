@@ -8,14 +8,14 @@
 namespace semo {
 namespace {
 
-struct Loaded {
+struct ElaboratedMission {
   SourceManager sources;
   DiagnosticEngine diags{sources};
   std::optional<model::MissionModel> model;
 };
 
-std::unique_ptr<Loaded> load(const std::string& mission, const std::string& strategy) {
-  auto l = std::make_unique<Loaded>();
+std::unique_ptr<ElaboratedMission> elaborateSpec(const std::string& mission, const std::string& strategy) {
+  auto l = std::make_unique<ElaboratedMission>();
   l->model = loadMission({SEMO_SOURCE_DIR "/" + mission, SEMO_SOURCE_DIR "/" + strategy, std::nullopt}, l->sources, l->diags);
   return l;
 }
@@ -29,11 +29,11 @@ std::vector<std::string> robotNames(const model::MissionModel& m, const std::vec
 class Scouting : public ::testing::Test {
  protected:
   void SetUp() override {
-    loaded_ = load("specs/examples/scouting/scouting.semo", "specs/examples/scouting/strategy.xml");
+    loaded_ = elaborateSpec("specs/examples/scouting/scouting.semo", "specs/examples/scouting/strategy.xml");
     ASSERT_TRUE(loaded_->model.has_value());
   }
   const model::MissionModel& m() const { return *loaded_->model; }
-  std::unique_ptr<Loaded> loaded_;
+  std::unique_ptr<ElaboratedMission> loaded_;
 };
 
 TEST_F(Scouting, ExpandsRobotArrays) {
@@ -121,7 +121,7 @@ TEST_F(Scouting, AssumptionsAndProperties) {
 }
 
 TEST(Elaborate, SwarmOfTenHasTenRobotsInItsGroup) {
-  auto l = load("specs/examples/swarm/swarm10.semo", "specs/examples/swarm/strategy.xml");
+  auto l = elaborateSpec("specs/examples/swarm/swarm10.semo", "specs/examples/swarm/strategy.xml");
   ASSERT_TRUE(l->model.has_value());
   EXPECT_EQ(l->model->robots.size(), 10u);
   ASSERT_FALSE(l->model->groupBlocks.empty());
@@ -129,7 +129,7 @@ TEST(Elaborate, SwarmOfTenHasTenRobotsInItsGroup) {
 }
 
 TEST(Elaborate, IncompleteFig2IsRejectedWithPositions) {
-  auto l = load("specs/fig2.semo", "specs/examples/scouting/strategy.xml");
+  auto l = elaborateSpec("specs/fig2.semo", "specs/examples/scouting/strategy.xml");
   EXPECT_FALSE(l->model.has_value());
   std::vector<std::string> errors;
   for (const Diagnostic& d : l->diags.diagnostics()) {

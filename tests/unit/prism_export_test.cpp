@@ -6,22 +6,15 @@
 #include "semo/checker/prism_export.hpp"
 #include "semo/frontend/diagnostics.hpp"
 #include "semo/semantics/ir_text.hpp"
+#include "ir_support.hpp"
 
 namespace semo::checker {
 namespace {
 
-ir::Model parse(const std::string& text) {
-  SourceManager sources;
-  DiagnosticEngine diags(sources);
-  auto model = ir::parseText(sources, sources.add("model.ir", text), diags);
-  EXPECT_TRUE(model.has_value()) << text;
-  return model ? *model : ir::Model{};
-}
-
 bool has(const std::string& text, const std::string& what) { return text.find(what) != std::string::npos; }
 
 TEST(PrismExport, AChainWithExactProbabilitiesLabelsAndQuestions) {
-  const PrismModel p = toPrism(parse("semo-ir 1;\nvar b.knows : bool = false;\nrule a.broadcast : !b.knows -> 4/5 : b.knows' = true + 1/5 : skip;\n"
+  const PrismModel p = toPrism(test::parseIr("semo-ir 1;\nvar b.knows : bool = false;\nrule a.broadcast : !b.knows -> 4/5 : b.knows' = true + 1/5 : skip;\n"
                                      "property known : eventually {b.knows};\n"),
                                true);
   EXPECT_TRUE(has(p.model, "\ndtmc\n")) << p.model;
@@ -33,7 +26,7 @@ TEST(PrismExport, AChainWithExactProbabilitiesLabelsAndQuestions) {
 }
 
 TEST(PrismExport, AnMdpAsksForTheMinimumAndMaximumAndInvariantsAsReachability) {
-  const PrismModel p = toPrism(parse("semo-ir 1;\nvar x : 0..2 = 0;\nrule a : x == 0 -> x' = 1;\nrule b : x == 0 -> x' = 2;\n"
+  const PrismModel p = toPrism(test::parseIr("semo-ir 1;\nvar x : 0..2 = 0;\nrule a : x == 0 -> x' = 1;\nrule b : x == 0 -> x' = 2;\n"
                                      "invariant small : x <= 1;\nproperty one : eventually {x == 1};\n"),
                                false);
   EXPECT_TRUE(has(p.model, "\nmdp\n"));
@@ -45,7 +38,7 @@ TEST(PrismExport, AnMdpAsksForTheMinimumAndMaximumAndInvariantsAsReachability) {
 }
 
 TEST(PrismExport, NamesAreMadeValidAndDistinctAndTypesAgree) {
-  const PrismModel p = toPrism(parse("semo-ir 1;\nvar a.b[2] : 0..3;\nvar a_b_1 : 0..3;\nvar init : bool;\nvar \"9 lives\" : 0..1;\n"
+  const PrismModel p = toPrism(test::parseIr("semo-ir 1;\nvar a.b[2] : 0..3;\nvar a_b_1 : 0..3;\nvar init : bool;\nvar \"9 lives\" : 0..1;\n"
                                      "rule r : init -> a.b[1]' = a_b_1 / 2, init' = a.b[1] % 3 == 1;\n"),
                                true);
   EXPECT_TRUE(has(p.model, "  a_b_1 : [0..3] init 0;  // a.b[1]\n")) << p.model;

@@ -17,15 +17,15 @@
 namespace semo {
 namespace {
 
-struct Translated {
+struct TranslatedSwarm {
   SourceManager sources;
   DiagnosticEngine diags{sources};
   std::optional<ir::Model> model;
 };
 
 // The swarm example of three robots (crash <= 2, lossy gossip, a group service with a goal).
-std::unique_ptr<Translated> swarm3(std::size_t countTeamsAbove, const std::string& strategy = "strategy.xml") {
-  auto t = std::make_unique<Translated>();
+std::unique_ptr<TranslatedSwarm> swarm3(std::size_t countTeamsAbove, const std::string& strategy = "strategy.xml") {
+  auto t = std::make_unique<TranslatedSwarm>();
   const std::string dir = SEMO_SOURCE_DIR "/specs/examples/swarm/";
   auto m = loadMission({dir + "swarm3.semo", dir + strategy, std::nullopt}, t->sources, t->diags);
   TranslationOptions options;

@@ -27,8 +27,6 @@ struct Answer {
   std::vector<double> within[2];
 };
 
-std::string number(double v) { return std::isinf(v) ? "infinite" : fmt::format("{:.9g}", v); }
-
 std::string range(const checker::QuantitativeResult (&r)[2], bool chain) {
   if (chain || r[0].value == r[1].value) return number(r[0].value);
   return "min " + number(r[0].value) + ", max " + number(r[1].value);

@@ -5,6 +5,9 @@
 
 namespace semo::cli {
 
+// A probability or an expected time as analyze prints it: 9 significant digits, or "infinite".
+std::string number(double v);
+
 int analyzeMission(const AnalyzeOptions& options, const BuiltModel& built);
 
 }  // namespace semo::cli

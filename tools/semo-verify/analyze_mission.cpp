@@ -16,6 +16,8 @@
 
 namespace semo::cli {
 
+std::string number(double v) { return std::isinf(v) ? std::string("infinite") : fmt::format("{:.9g}", v); }
+
 namespace {
 
 struct Finder {
@@ -98,8 +100,6 @@ struct Heartbeats {
   std::size_t takeoverAfter = 0, burst = 0, horizon = 0;  // periods
   checker::LossRunAnswer outside, takeover;
 };
-
-std::string number(double v) { return std::isinf(v) ? std::string("infinite") : fmt::format("{:.9g}", v); }
 
 void printHeartbeats(const Heartbeats& h, double loss) {
   std::cout << fmt::format("leader block {}: heartbeat every {} ms, takeover after {} silent period{}, assumed burst <= {}\n", h.block,

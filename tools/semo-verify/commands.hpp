@@ -21,6 +21,9 @@
 namespace semo::runtime {
 struct World;
 }
+namespace semo::sdf {
+struct Period;
+}
 
 namespace semo::cli {
 
@@ -250,6 +253,9 @@ std::optional<std::string> generatedCertificate(const std::string& path);
 bool modelOptionsOf(const std::string& certificate, TranslationOptions& out, std::string& error);
 // Where two tables first differ, in words ("" when they are equal).
 std::string firstTableDifference(const runtime::MissionTables& expected, const runtime::MissionTables& actual);
+
+// A period p/q as the sdf commands print it ("3" or "7/2").
+std::string periodText(const sdf::Period& p);
 
 int runParse(const ParseOptions& options);
 int runSdf(const SdfOptions& options);

@@ -14,7 +14,7 @@ namespace semo::cli {
 
 namespace {
 
-std::string quoted(const std::string& text) {
+std::string dotQuoted(const std::string& text) {
   std::string out = "\"";
   for (char c : text) {
     if (c == '"' || c == '\\') out += '\\';
@@ -32,7 +32,7 @@ std::string modesDot(const model::MissionModel& m) {
                     "  edge [fontname=\"sans-serif\", fontsize=10];\n";
   for (std::size_t t = 0; t < m.teams.size(); ++t) {
     const model::Team& team = m.teams[t];
-    out += fmt::format("  subgraph cluster_{} {{\n    label={};\n    fontname=\"sans-serif\";\n", t, quoted(team.name));
+    out += fmt::format("  subgraph cluster_{} {{\n    label={};\n    fontname=\"sans-serif\";\n", t, dotQuoted(team.name));
     for (model::Index mi : team.modes) {
       const model::Mode& mode = m.modes[mi];
       std::string label = mode.name;
@@ -41,7 +41,7 @@ std::string modesDot(const model::MissionModel& m) {
       }
       std::string style = mi == team.initialMode ? ", penwidth=2.5" : "";
       if (!mode.reachable) style += ", color=gray60, fontcolor=gray40, style=\"rounded,dashed\"";
-      out += fmt::format("    m{} [label={}{}];\n", mi, quoted(label), style);
+      out += fmt::format("    m{} [label={}{}];\n", mi, dotQuoted(label), style);
     }
     if (team.initialMode != model::kNone) {
       out += fmt::format("    start{0} [shape=point, width=0.12];\n    start{0} -> m{1};\n", t, team.initialMode);
@@ -52,7 +52,7 @@ std::string modesDot(const model::MissionModel& m) {
         if (tr.isDefault) {
           out += fmt::format("    m{} -> m{} [label=\"default\", style=dashed];\n", mi, tr.target);
         } else if (tr.event < team.events.size()) {
-          out += fmt::format("    m{} -> m{} [label={}];\n", mi, tr.target, quoted("catch " + team.events[tr.event].name));
+          out += fmt::format("    m{} -> m{} [label={}];\n", mi, tr.target, dotQuoted("catch " + team.events[tr.event].name));
         }
       }
     }
@@ -74,7 +74,7 @@ std::string groupsDot(const model::MissionModel& m) {
                    ? fmt::format("\nheartbeat {} ms, takeover after {} ms", block.leader.heartbeatMillis, block.leader.timeoutMillis)
                    : "\nnew leader when the group forms";
     }
-    out += fmt::format("  b{} [shape=box3d, label={}];\n", b, quoted(label));
+    out += fmt::format("  b{} [shape=box3d, label={}];\n", b, dotQuoted(label));
     for (std::size_t a = 0; a < block.arms.size(); ++a) {
       const model::GroupArm& arm = block.arms[a];
       std::string what = arm.kind == model::GroupArm::Kind::Leader ? "leader" : arm.kind == model::GroupArm::Kind::Others ? "others" : "group";
@@ -85,11 +85,11 @@ std::string groupsDot(const model::MissionModel& m) {
       }
       const std::int64_t demand = m.armDemand(arm);
       if (arm.kind != model::GroupArm::Kind::Others && demand > 1) what += fmt::format("\nneeds {} robots", demand);
-      out += fmt::format("  b{}a{} [shape=ellipse, label={}];\n  b{} -> b{}a{};\n", b, a, quoted(what), b, b, a);
+      out += fmt::format("  b{}a{} [shape=ellipse, label={}];\n  b{} -> b{}a{};\n", b, a, dotQuoted(what), b, b, a);
       for (model::Index r : arm.candidates) {
         if (r >= m.robots.size()) continue;
         if (!robotDrawn[r]) {
-          out += fmt::format("  r{} [shape=box, style=filled, fillcolor=\"#eef3fb\", label={}];\n", r, quoted(m.robots[r].name + "\n" + m.robots[r].type));
+          out += fmt::format("  r{} [shape=box, style=filled, fillcolor=\"#eef3fb\", label={}];\n", r, dotQuoted(m.robots[r].name + "\n" + m.robots[r].type));
           robotDrawn[r] = true;
         }
         out += fmt::format("  b{}a{} -> r{} [style=dotted, arrowhead=none];\n", b, a, r);
@@ -106,7 +106,7 @@ std::string tasksDot(const checker::Report& report) {
     const sdf::TaskGraph& graph = report.taskGraphs[g].graph;
     const sdf::TaskGraphAnalysis& analysis = report.taskGraphs[g].analysis;
     out += fmt::format("  subgraph cluster_r{} {{\n    label={};\n    fontname=\"sans-serif\";\n", g,
-                       quoted("robot " + graph.robot + " (" + graph.robotType + ", " + graph.team + ")"));
+                       dotQuoted("robot " + graph.robot + " (" + graph.robotType + ", " + graph.team + ")"));
     for (std::size_t s = 0; s < graph.scenarios.size(); ++s) {
       const sdf::Scenario& scenario = graph.scenarios[s];
       std::string label = "scenario " + scenario.name;
@@ -116,12 +116,12 @@ std::string tasksDot(const checker::Report& report) {
         if (a.sound()) label += fmt::format(" (proven; period {}{} us)", p.num, p.den == 1 ? std::string() : fmt::format("/{}", p.den));
         else label += " (NOT proven)";
       }
-      out += fmt::format("    subgraph cluster_r{}s{} {{\n      label={};\n      style=rounded;\n", g, s, quoted(label));
+      out += fmt::format("    subgraph cluster_r{}s{} {{\n      label={};\n      style=rounded;\n", g, s, dotQuoted(label));
       for (std::uint32_t t : scenario.tasks) {
         if (t >= graph.tasks.size()) continue;
         const sdf::Task& task = graph.tasks[t];
         out += fmt::format("      r{}s{}t{} [shape={}, label={}];\n", g, s, t, t == scenario.tasks.front() ? "doubleoctagon" : "box",
-                           quoted(fmt::format("{}\n{} us", task.name, task.execMicros)));
+                           dotQuoted(fmt::format("{}\n{} us", task.name, task.execMicros)));
       }
       for (const sdf::ScenarioChannel& c : scenario.channels) {
         if (c.channel >= graph.channels.size()) continue;
@@ -129,7 +129,7 @@ std::string tasksDot(const checker::Report& report) {
         std::string label = fmt::format("{}:{}", c.production, c.consumption);
         if (c.initialTokens != 0) label += fmt::format(" \u2022{}", c.initialTokens);
         if (c.channel < analysis.capacities.size() && analysis.capacities[c.channel] > 0) label += fmt::format("\ncap {}", analysis.capacities[c.channel]);
-        out += fmt::format("      r{0}s{1}t{2} -> r{0}s{1}t{3} [label={4}{5}];\n", g, s, ch.fromTask, ch.toTask, quoted(label),
+        out += fmt::format("      r{0}s{1}t{2} -> r{0}s{1}t{3} [label={4}{5}];\n", g, s, ch.fromTask, ch.toTask, dotQuoted(label),
                            ch.control ? ", color=gray50" : "");
       }
       out += "    }\n";

@@ -11,9 +11,9 @@
 
 namespace semo::cli {
 
-namespace {
-
 std::string periodText(const sdf::Period& p) { return std::to_string(p.num) + (p.den == 1 ? "" : "/" + std::to_string(p.den)); }
+
+namespace {
 
 void printFront(const sdf::Graph& g, const sdf::ParetoFront& front) {
   std::cout << "buffers:     throughput-buffer Pareto front (" << front.distributions << " distributions explored"

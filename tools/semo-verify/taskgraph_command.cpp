@@ -17,7 +17,6 @@ namespace {
 
 using nlohmann::json;
 
-std::string periodText(const sdf::Period& p) { return std::to_string(p.num) + (p.den == 1 ? "" : "/" + std::to_string(p.den)); }
 
 const char* outcomeName(sdf::ChannelMinimality::Outcome o) {
   switch (o) {
