@@ -185,6 +185,8 @@ Outcome decide(const CompiledModel& cm, const ControlFacts& facts, std::size_t k
   }
   out.method.slicingGaveUp = sliced.why;
   // No slice decided: a violation may still be in reach of a round-robin scheduler (region_lasso.hpp).
+  // Each phase says so: the progress line would otherwise go on naming the symbolic hunt.
+  if (limits.onPhase) limits.onPhase("liveness: " + prop.name + ": no slice decided; hunting a fair loop under a round-robin scheduler");
   detail::RegionSearch hunt = detail::lassoUnderRoundRobin(cm, prop, std::min(limits.maxStates, kRoundRobinBudget));
   out.states += hunt.states;
   out.method.states = out.states;
@@ -202,6 +204,9 @@ Outcome decide(const CompiledModel& cm, const ControlFacts& facts, std::size_t k
     out.whole = false;
     out.why = prop.name + ": " + sliced.why;
     return out;
+  }
+  if (limits.onPhase) {
+    limits.onPhase("liveness: " + prop.name + ": no slice decided; searching the whole product (--max-states " + std::to_string(limits.maxStates) + ")");
   }
   Outcome whole = checkProperty(cm, prop, limits, start, symmetry);
   whole.states += sliced.states;
