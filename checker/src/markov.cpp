@@ -308,7 +308,8 @@ std::vector<std::int64_t> stronglyConnected(const MarkovModel& m, const std::vec
       Frame& f = calls.back();
       const std::uint32_t s = f.state;
       bool descended = false;
-      while (f.action < m.actionStart[s + 1] && !descended) {
+      // `descended` first: once open() has grown `calls`, f dangles and must not be read.
+      while (!descended && f.action < m.actionStart[s + 1]) {
         if (allowed[f.action] == 0 || f.outcome >= m.outcomeStart[f.action + 1]) {
           ++f.action;
           if (f.action < m.actionStart[s + 1]) f.outcome = m.outcomeStart[f.action];
