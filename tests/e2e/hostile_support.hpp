@@ -25,6 +25,8 @@
 #include <thread>
 #include <vector>
 
+#include "cli_run.hpp"
+
 
 namespace hostile {
 
@@ -46,12 +48,7 @@ struct Outcome {
   std::string out, err;
 };
 
-inline std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using semo::e2e::slurp;
 
 inline void writeFile(const fs::path& p, const std::string& text) {
   fs::create_directories(p.parent_path());
