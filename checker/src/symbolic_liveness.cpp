@@ -172,7 +172,7 @@ class SymbolicLasso {
 
   // The states of `region` that take one of the group's steps inside it.
   bdd takesGroup(std::uint32_t g, const bdd& region, const std::vector<char>& allowed) {
-    return region & p_.predecessors(region, allowed, &p_.fairness().members[g]);
+    return p_.predecessors(region, allowed, &p_.fairness().members[g], region);
   }
 
   // One of the group's steps inside `region` (the walk is where one is taken).
@@ -188,7 +188,7 @@ class SymbolicLasso {
     std::vector<bdd> rings{goal & within};
     bdd covered = rings.back();
     while (!p_.contains(covered, current_)) {
-      bdd next = within & p_.predecessors(rings.back(), allowed, nullptr) & !covered;
+      bdd next = p_.predecessors(rings.back(), allowed, nullptr, within & !covered);
       if (next == bddfalse) throw std::logic_error("symbolic lasso: the goal is out of reach");
       rings.push_back(next);
       covered |= next;
