@@ -24,6 +24,12 @@ namespace semo::runtime {
 
 static_assert(std::is_same_v<sunrealtype, double>, "semo expects SUNDIALS built in double precision (as Debian ships it)");
 
+// The unicycle's command, the data CVODE hands the right-hand side. Outside the anonymous namespace
+// because Body::State holds one (a unity build would warn of a member of internal linkage).
+struct BodyCommand {
+  double v = 0, w = 0;
+};
+
 namespace {
 
 constexpr double kRelativeTolerance = 1e-8;
@@ -32,12 +38,8 @@ constexpr double kAbsoluteTolerance = 1e-10;
 // driving in one call); the bound only guards against a runaway.
 constexpr long kMaxSteps = 10'000'000;
 
-struct Command {
-  double v = 0, w = 0;
-};
-
 int rhs(sunrealtype /*t*/, N_Vector y, N_Vector ydot, void* data) {
-  const auto* c = static_cast<const Command*>(data);
+  const auto* c = static_cast<const BodyCommand*>(data);
   const double theta = NV_Ith_S(y, 2);
   NV_Ith_S(ydot, 0) = c->v * std::cos(theta);
   NV_Ith_S(ydot, 1) = c->v * std::sin(theta);
@@ -47,7 +49,7 @@ int rhs(sunrealtype /*t*/, N_Vector y, N_Vector ydot, void* data) {
 
 // d(rhs)/d(x, y, θ): only the θ column is non-zero.
 int jacobian(sunrealtype /*t*/, N_Vector y, N_Vector /*fy*/, SUNMatrix J, void* data, N_Vector, N_Vector, N_Vector) {
-  const auto* c = static_cast<const Command*>(data);
+  const auto* c = static_cast<const BodyCommand*>(data);
   const double theta = NV_Ith_S(y, 2);
   SUNMatZero(J);
   SM_ELEMENT_D(J, 0, 2) = -c->v * std::sin(theta);
@@ -67,7 +69,7 @@ struct Body::State {
   DriveGeometry geometry;
   double t = 0;
   Pose pose;  // authoritative between advances; θ is not wrapped here (the integral stays smooth)
-  Command command;
+  BodyCommand command;
   bool restart = true;  // the command changed since CVODE last ran: re-initialise it
   // Created at the first advance that moves: a robot that never moves never allocates a solver.
   SUNContext context = nullptr;
