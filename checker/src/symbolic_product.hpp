@@ -185,7 +185,7 @@ class SymbolicProduct {
   // Whether rule r steps from a state of `z` to one of `z` (product steps; `zAfter` is
   // automatonPredecessors(z)).
   bool stepsWithin(const bdd& z, const bdd& zAfter, std::uint32_t r) {
-    return preimageFrom(r, z, toNext(zAfter)) != bddfalse;
+    return preimageFrom(rules_[r].frame, z, toNext(zAfter)) != bddfalse;
   }
 
   // The states of `sources` with a product step into `z`: by the rules `only` lists (all when null)
@@ -205,14 +205,13 @@ class SymbolicProduct {
   bdd modelPredecessors(const bdd& afterModel, const std::vector<char>& allowed, const std::vector<std::uint32_t>* only, const bdd& sources) {
     bdd out = bddfalse;
     const bdd afterNext = toNext(afterModel);
-    auto back = [&](std::uint32_t r) {
-      if (allowed[r] != 0) out |= preimageFrom(r, sources, afterNext);
-    };
     if (only != nullptr) {
-      for (std::uint32_t r : *only) back(r);
+      for (std::uint32_t r : *only) {
+        if (allowed[r] != 0) out |= preimageFrom(rules_[r].frame, sources, afterNext);
+      }
       return out;
     }
-    for (std::uint32_t r = 0; r < rules_.size(); ++r) back(r);
+    for (const bdd& relation : clustersOf(allowed)) out |= preimageFrom(relation, sources, afterNext);
     return out | (sources & afterModel & !enabledFair_);
   }
 
@@ -229,10 +228,36 @@ class SymbolicProduct {
   // each rule's own next bits rebuilt the whole set once per rule, and a preimage of all of it
   // before the cut described states nobody asked about: on the swarm of 10 without symmetry that
   // was four fifths of the fair states' search, 28 s of 35 on its two largest slices.)
-  bdd preimageFrom(std::uint32_t r, const bdd& sources, const bdd& statesNext) {
-    const bdd out = bdd_appex(rules_[r].frame & sources, statesNext, bddop_and, nextBits_);
+  bdd preimageFrom(const bdd& relation, const bdd& sources, const bdd& statesNext) {
+    const bdd out = bdd_appex(relation & sources, statesNext, bddop_and, nextBits_);
     check();
     return out;
+  }
+
+  // The whole-state relations of the rules `allowed` marks, neighbouring rules joined (a translated
+  // model lists a robot's rules together) while the joined diagram stays under kClusterNodes: fewer,
+  // larger preimages. Measured on 2026-11-28 (scouting's leader_reelection[WatchLight], symbolic
+  // processor time over its 17 symbolic slices): a rule at a time 77 s; clusters of up to 4,000
+  // nodes 44 s, 10,000 54 s, 20,000 48 s, 50,000 76 s.
+  const std::vector<bdd>& clustersOf(const std::vector<char>& allowed) {
+    auto it = clusters_.find(allowed);
+    if (it != clusters_.end()) return it->second;
+    constexpr int kClusterNodes = 4000;
+    std::vector<bdd> out;
+    bdd joined = bddfalse;
+    for (std::uint32_t r = 0; r < rules_.size(); ++r) {
+      if (allowed[r] == 0) continue;
+      const bdd wider = joined | rules_[r].frame;
+      check();
+      if (joined != bddfalse && bdd_nodecount(wider) > kClusterNodes) {
+        out.push_back(joined);
+        joined = rules_[r].frame;
+      } else {
+        joined = wider;
+      }
+    }
+    if (joined != bddfalse) out.push_back(joined);
+    return clusters_.emplace(allowed, std::move(out)).first->second;
   }
 
   // The states of `within` reachable from `from` by product steps of the rules `allowed` marks.
@@ -251,9 +276,9 @@ class SymbolicProduct {
       reached |= z & after & !enabledFair_;  // time passing
       bdd afterNext = toNext(after);
       bdd open = z & !reached;
-      for (std::uint32_t r = 0; r < rules_.size() && open != bddfalse; ++r) {
-        if (allowed[r] == 0) continue;
-        const bdd found = preimageFrom(r, open, afterNext);
+      for (const bdd& relation : clustersOf(allowed)) {
+        if (open == bddfalse) break;
+        const bdd found = preimageFrom(relation, open, afterNext);
         if (found == bddfalse) continue;
         reached |= found;
         open &= !found;
@@ -591,6 +616,7 @@ class SymbolicProduct {
   std::vector<Rule> rules_;
   bdd automatonRelation_, labels_, automatonCurrent_, automatonNext_, enabledFair_, currentBits_, nextBits_;
   bddPair* allToNext_ = nullptr;
+  std::map<std::vector<char>, std::vector<bdd>> clusters_;  // by the rules allowed
   bddPair* automatonToNext_ = nullptr;
   bddPair* automatonToCurrent_ = nullptr;
   std::vector<bdd> groupEnabled_;
