@@ -91,6 +91,7 @@ Ic3Outcome proveWithIc3(z3::context& ctx, const TransitionSystem& sys, unsigned 
   }
   out.kind = Ic3Outcome::Kind::Proven;
   out.conjuncts = inv0.is_and() ? inv0.num_args() : 1;
+  out.invariant = inv0;
   return out;
 }
 

@@ -7,6 +7,7 @@
 // and returns that derivation's number of steps so that bounded model checking can rebuild the
 // counterexample at exactly that depth.
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include <z3++.h>
@@ -21,6 +22,9 @@ struct Ic3Outcome {
   std::uint32_t depth = 0;      // Violated: steps from the initial state to the error
   std::uint32_t conjuncts = 0;  // Proven: top-level conjuncts of the checked invariant
   std::string note;             // Unknown: why
+  // Proven: the invariant over the state's current copy, checked independently; it holds in every
+  // reachable state, so later proofs may take their steps from its states only.
+  std::optional<z3::expr> invariant;
 };
 
 // A transition system over Boolean and integer constants: `current` and `next` are the state's

@@ -114,7 +114,10 @@ bool lemmasInductive(const ir::Model& m, const SmtOptions& options) {
 
 // IC3 on every property still unknown after k-induction. The step relation keeps to the ranges, so
 // the ranges come first: unless k-induction already proved them, IC3 must (an update that leaves a
-// range is a modelling error, reported with its path as BMC would).
+// range is a modelling error, reported with its path as BMC would). Each invariant IC3 proves (and
+// semo checks) is assumed by the proofs after it: it holds in every reachable state, and Spacer,
+// stepping only from its states, need not learn it again (the dining philosophers' deadlock
+// freedom, after the other six properties: 35 s alone, 4 s in all so; measured 2026-11-28).
 void runIc3(const ir::Model& m, const std::vector<Target>& props, const SmtOptions& options, bool rangesProven, bool lemmas,
             SmtResult& out) {
   SearchResult& result = out.search;
@@ -128,7 +131,7 @@ void runIc3(const ir::Model& m, const std::vector<Target>& props, const SmtOptio
   if (lemmas) {
     for (const ir::Expr& l : options.lemmas) proven.push_back(enc.holds(l, 0));
   }
-  const z3::expr assumed = z3::mk_and(proven);
+  z3::expr assumed = z3::mk_and(proven);
   if (!rangesProven) {
     if (options.onPhase) options.onPhase("smt: IC3 on the variables' ranges");
     Ic3Outcome ranges = detail::proveWithIc3(ctx, enc, enc.transitionByCases(0) && !enc.inRange(1), options.timeoutMs, assumed);
@@ -156,6 +159,8 @@ void runIc3(const ir::Model& m, const std::vector<Target>& props, const SmtOptio
       out.note = "IC3 could not show that every variable stays in its range (" + ranges.note + "), so proved nothing unbounded";
       return;
     }
+    proven.push_back(*ranges.invariant);
+    assumed = z3::mk_and(proven);
   }
   for (std::size_t n = 0; n < open.size(); ++n) {
     const std::size_t j = open[n];
@@ -165,6 +170,10 @@ void runIc3(const ir::Model& m, const std::vector<Target>& props, const SmtOptio
       result.properties[j].verdict = Verdict::Proven;
       out.proof[j] = SmtProof::Ic3;
       out.invariantConjuncts[j] = o.conjuncts;
+      // Its checked invariant holds in every reachable state: the next proofs step only from its
+      // states, Spacer starting from what this one learnt.
+      proven.push_back(*o.invariant);
+      assumed = z3::mk_and(proven);
     } else if (o.kind == Ic3Outcome::Kind::Violated) {
       const Target& t = props[j];
       auto fails = [&m, &t](SmtEncoding& e, std::uint32_t d) { return !good(e, m, t, d) && e.inRange(d); };

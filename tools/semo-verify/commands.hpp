@@ -68,7 +68,7 @@ struct CheckOptions {
   bool walks = true;            // LivenessOptions::walks
   std::uint64_t walkSeed = 1;   // LivenessOptions::walkSeed
   std::uint64_t sliceStates = 500'000;  // LivenessOptions::sliceStates
-  double symbolicSeconds = 180;          // LivenessOptions::symbolicSeconds
+  double symbolicSeconds = checker::LivenessOptions{}.symbolicSeconds;
   bool safetyOnly = false;
   unsigned threads = 0;  // 0: one per core
   std::uint64_t maxMemoryMiB = 8192;

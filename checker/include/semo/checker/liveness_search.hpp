@@ -74,9 +74,11 @@ struct LivenessOptions {
   // A slice too large to enumerate is searched as decision diagrams (symbolic_liveness.hpp).
   bool symbolic = true;
   // The processor time all the symbolic searches of one property may take: its slices, then the
-  // hunt on its cone (the last ninth, at most 20 s). Three minutes: scouting's
-  // leader_reelection[WatchLight] is proven on its 25th slice after 80 to 130 s of them.
-  double symbolicSeconds = 180;
+  // hunt on its cone (the last ninth, at most 20 s). 90 s: scouting's
+  // leader_reelection[WatchLight] is proven on its 25th slice after about 44 s of them (since the
+  // preimages through clusters, 2026-11-28; it was 80 to 130 s, hence three minutes before), and an
+  // undecided property ends twice as soon.
+  double symbolicSeconds = 90;
   // When no slice decides, random walks on the whole model hunt a fair violation first
   // (lasso_walks.hpp; at most 10 s), before the symbolic hunt and the round-robin one.
   bool walks = true;
