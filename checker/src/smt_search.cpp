@@ -87,6 +87,22 @@ std::optional<Trace> pathOfDepth(const ir::Model& m, std::uint32_t depth, Error 
   return traceOf(s.get_model(), enc, m, depth);
 }
 
+// Whether every step from a state where `now` holds leads to one where `next` holds (its copy at
+// step 1), checked one rule outcome at a time, each in a solver of its own: a step moves one robot,
+// and a fresh solver simplifies the query away before searching. On the swarm of 10's team counts
+// (81 outcomes): the whole step relation at once 17 s, one incremental solver 5.6 s, this 0.14 s
+// (measured 2026-11-28).
+bool keptByEveryStep(z3::context& ctx, SmtEncoding& enc, const z3::params& p, const z3::expr& now, const z3::expr& next) {
+  const z3::expr broken = now && !next;
+  for (std::size_t a = 0; a < enc.actions().size(); ++a) {
+    z3::solver consecution(ctx);
+    consecution.set(p);
+    consecution.add(broken && enc.stepBy(a, 0));
+    if (consecution.check() != z3::unsat) return false;
+  }
+  return true;
+}
+
 // The lemmas (SmtOptions::lemmas), if each holds initially and together they are kept by every
 // step: then they hold in every reachable state. Whole or nothing: a definition that fails means
 // the counts are not what they claim, and the others are not trusted either.
@@ -106,10 +122,7 @@ bool lemmasInductive(const ir::Model& m, const SmtOptions& options) {
   initiation.set(p);
   initiation.add(enc.initial(0) && !z3::mk_and(now));
   if (initiation.check() != z3::unsat) return false;
-  z3::solver consecution(ctx);
-  consecution.set(p);
-  consecution.add(z3::mk_and(now) && enc.transition(0) && !z3::mk_and(next));
-  return consecution.check() == z3::unsat;
+  return keptByEveryStep(ctx, enc, p, z3::mk_and(now), z3::mk_and(next));
 }
 
 // IC3 on every property still unknown after k-induction. The step relation keeps to the ranges, so
@@ -209,6 +222,10 @@ SmtResult checkSafetySmt(const ir::Model& model, const SmtOptions& options) {
   z3::params params(ctx);
   if (options.timeoutMs != 0) params.set("timeout", options.timeoutMs);
   SmtEncoding enc(ctx, model);
+  // Whether no step from within the ranges can leave them: then no range error exists at any
+  // depth, and BMC need not look for one at each (the largest of its queries: 6.4 of scouting's 10 s
+  // of BMC to depth 5; measured 2026-11-28). Induction and IC3 still prove the ranges as before.
+  const bool rangesKept = keptByEveryStep(ctx, enc, params, enc.inRange(0), enc.inRange(1));
   z3::solver bmc(ctx);
   bmc.set(params);
   bmc.add(enc.initial(0));
@@ -220,7 +237,7 @@ SmtResult checkSafetySmt(const ir::Model& model, const SmtOptions& options) {
     if (options.onPhase) options.onPhase("smt: bounded model checking, depth " + std::to_string(depth) + " of " + std::to_string(options.maxDepth));
     if (depth > 0) {
       // An update that leaves a declared range is a modelling error, as in the explicit engine.
-      z3::check_result r = checkWith(bmc, !enc.inRange(depth));
+      z3::check_result r = rangesKept ? z3::unsat : checkWith(bmc, !enc.inRange(depth));
       if (r == z3::sat) {
         Trace t = traceOf(bmc.get_model(), enc, model, depth);
         bmc.pop();

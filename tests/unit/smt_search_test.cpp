@@ -116,6 +116,25 @@ TEST(SmtSearch, Ic3FindsARangeErrorBeyondTheBound) {
   EXPECT_NE(r.search.properties[0].verdict, Verdict::Proven);
 }
 
+TEST(SmtSearch, BoundedModelCheckingFindsARangeErrorWithinTheBound) {
+  // The ranges are not kept by every step (x = 5 steps out), so BMC looks for a range error at each
+  // depth and finds the shortest, as the explicit engine does; where every step keeps them (y), it
+  // need not look, and a model without an error still proves its invariant.
+  ir::Model bad = test::parseIr("semo-ir 1;\nvar x : 0..5 = 3;\nrule inc @fair : x < 7 -> x' = x + 1;\n"
+                                "invariant small : x < 100;\n");
+  SmtOptions options;
+  options.maxDepth = 5;
+  SmtResult r = checkSafetySmt(bad, options);
+  ASSERT_TRUE(r.search.rangeError.has_value());
+  EXPECT_EQ(r.search.rangeError->steps.size(), 3u);
+  EXPECT_EQ(r.search.rangeError->steps.size(), checkSafety(bad, {}).rangeError->steps.size());
+  ir::Model good = test::parseIr("semo-ir 1;\nvar y : 0..5 = 3;\nrule inc @fair : y < 5 -> y' = y + 1;\n"
+                                 "invariant small : y >= 3;\n");
+  SmtResult g = checkSafetySmt(good, options);
+  EXPECT_FALSE(g.search.rangeError.has_value());
+  EXPECT_EQ(g.search.properties[0].verdict, Verdict::Proven);
+}
+
 TEST(SmtSearch, TruncatingDivisionAsTheExplicitEngine) {
   // -7 / 2 = -3 and -7 % 2 = -1 in C (and in the explicit engine); x / 0 = 0.
   ir::Model m = test::parseIr("semo-ir 1;\nvar a : -9..9 = -7;\nvar q : -9..9 = 0;\nvar r : -9..9 = 0;\nvar z : -9..9 = 5;\n"
