@@ -19,6 +19,9 @@ struct Input {
   std::string args;  // the model: a mission with its strategy, or an .ir file
   bool mission = true;
 };
+// GoogleTest prints a parameter without PrintTo as its bytes, pointers included: ctest's names
+// (gtest_discover_tests) then changed from build to build, and its measured times were lost.
+void PrintTo(const Input& in, std::ostream* os) { *os << in.name; }
 
 std::vector<Input> inputs() {
   std::vector<Input> out;

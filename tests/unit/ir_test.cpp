@@ -349,6 +349,7 @@ struct BadInput {
   const char* text;
   const char* error;  // "line:col: message"
 };
+void PrintTo(const BadInput& b, std::ostream* os) { *os << b.what; }  // a stable name (mission_support.hpp)
 
 class IrReaderErrors : public ::testing::TestWithParam<BadInput> {};
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <optional>
+#include <ostream>
 #include <string>
 
 #include "semo/semantics/load.hpp"
@@ -15,6 +16,9 @@ struct ShippedMission {
   const char* mission;   // relative to the source tree
   const char* strategy;
 };
+// GoogleTest prints a parameter without PrintTo as its bytes, pointers included: ctest's names
+// (gtest_discover_tests) then changed from build to build, and its measured times were lost.
+inline void PrintTo(const ShippedMission& m, std::ostream* os) { *os << m.mission; }
 
 // The IR of a mission, or nullopt with a test failure per diagnostic. Paths are relative to the
 // source tree; they are given to the loader as SEMO_SOURCE_DIR "/" + path (the rules' origins
