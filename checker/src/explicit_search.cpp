@@ -1,7 +1,13 @@
 #include "semo/checker/explicit_search.hpp"
 
+#include <sched.h>
+
 #include <algorithm>
+#include <charconv>
 #include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <thread>
 
 #include "semo/checker/compiled_model.hpp"
 #include "block_insertion.hpp"
@@ -10,6 +16,33 @@
 #include "worker_pool.hpp"
 
 namespace semo::checker {
+
+namespace {
+
+// SEMO_THREADS as a count, 0 when unset or not one.
+unsigned threadsSetting() {
+  const char* text = std::getenv("SEMO_THREADS");
+  if (text == nullptr || *text == '\0') return 0;
+  unsigned value = 0;
+  const char* end = text + std::strlen(text);
+  const auto [at, error] = std::from_chars(text, end, value);
+  return error == std::errc() && at == end && value >= 1 && value <= 256 ? value : 0;
+}
+
+}  // namespace
+
+unsigned defaultThreads() {
+  if (unsigned set = threadsSetting(); set != 0) return set;
+  cpu_set_t mask;
+  if (sched_getaffinity(0, sizeof mask, &mask) == 0) return std::max(1, CPU_COUNT(&mask));
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
+std::string threadsSettingError() {
+  const char* text = std::getenv("SEMO_THREADS");
+  if (text == nullptr || *text == '\0' || threadsSetting() != 0) return {};
+  return std::string("SEMO_THREADS='") + text + "' is not a number of threads (a whole number from 1 to 256)";
+}
 
 using detail::kNoParent;
 using detail::StateStore;

@@ -2,7 +2,6 @@
 #include "semo/codegen/certify.hpp"
 
 #include <filesystem>
-#include <thread>
 
 #include "certificate.hpp"
 #include "semo/checker/fingerprint.hpp"
@@ -278,7 +277,7 @@ CertifyReport certify(const std::string& dir, const CertifyOptions& options, Sou
       vo.limits.maxStates = how.maxStates;
       vo.limits.maxDepth = how.maxDepth;
       vo.limits.symmetry = how.symmetry;
-      vo.limits.threads = std::max(1u, std::thread::hardware_concurrency());
+      vo.limits.threads = checker::defaultThreads();
       vo.safetyOnly = how.safetyOnly;
       vo.smt.induction = vo.smt.ic3 = !how.bmcOnly;
       vo.bounds.timeoutMs = how.proofTimeoutMs;

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <bit>
+#include <cstdlib>
+#include <string>
 #include <functional>
 
 #include "ir_support.hpp"
@@ -166,6 +168,29 @@ TEST(SearchThreads, BoundedSearch) {
   EXPECT_EQ(r.states, 39203u + 11440u) << "levels 0..9";
   EXPECT_EQ(r.properties[0].verdict, Verdict::Violated) << "at the bound: checked when stored";
   EXPECT_EQ(r.properties[1].verdict, Verdict::Unknown);
+}
+
+// The default thread count: SEMO_THREADS when it is a count, else the processors this process may
+// run on; anything else in SEMO_THREADS is an error the CLI reports (e2e.check_threads_setting).
+TEST(SearchThreads, TheDefaultComesFromSemoThreadsOrTheProcessors) {
+  const char* saved = std::getenv("SEMO_THREADS");
+  const std::string keep = saved != nullptr ? saved : "";
+  unsetenv("SEMO_THREADS");
+  const unsigned processors = defaultThreads();
+  EXPECT_GE(processors, 1u);
+  EXPECT_EQ(threadsSettingError(), "");
+  setenv("SEMO_THREADS", "3", 1);
+  EXPECT_EQ(defaultThreads(), 3u);
+  EXPECT_EQ(threadsSettingError(), "");
+  for (const char* bad : {"0", "257", "two", "3 ", "-1"}) {
+    setenv("SEMO_THREADS", bad, 1);
+    EXPECT_EQ(defaultThreads(), processors) << bad;
+    EXPECT_NE(threadsSettingError().find("is not a number of threads"), std::string::npos) << bad;
+  }
+  setenv("SEMO_THREADS", "", 1);
+  EXPECT_EQ(threadsSettingError(), "") << "empty is unset";
+  if (saved != nullptr) setenv("SEMO_THREADS", keep.c_str(), 1);
+  else unsetenv("SEMO_THREADS");
 }
 
 }  // namespace

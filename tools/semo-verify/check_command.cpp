@@ -7,7 +7,6 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <thread>
 #include <nlohmann/json.hpp>
 
 #include <fmt/format.h>
@@ -174,7 +173,7 @@ checker::VerifyOptions verifyOptions(const CheckOptions& options, ProgressLine* 
   v.liveness.walkSeed = options.walkSeed;
   v.liveness.sliceStates = options.sliceStates;
   v.liveness.symbolicSeconds = options.symbolicSeconds;
-  v.limits.threads = options.threads != 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+  v.limits.threads = options.threads != 0 ? options.threads : checker::defaultThreads();
   v.safetyOnly = options.safetyOnly;
   v.smt.induction = v.smt.ic3 = !options.bmcOnly;
   v.smt.timeoutMs = options.smtTimeoutS * 1000u;

@@ -114,7 +114,8 @@ int run(int argc, char** argv) {
     cmd->add_option("--slice-states", check.sliceStates,
                     "Product states one slice of the model may take (default 500000; --max-states, if lower, bounds it too)")
         ->check(CLI::Range(std::uint64_t{1}, UINT64_MAX));
-    cmd->add_option("--threads", check.threads, "Threads for the searches (default: one per core; the results do not depend on it)")
+    cmd->add_option("--threads", check.threads,
+                    "Threads for the searches (default: SEMO_THREADS if set, else one per core; the results do not depend on it)")
         ->check(CLI::Range(1u, 256u));
     cmd->add_flag("--safety-only", check.safetyOnly, "Check the invariants and deadlock freedom only, not the LTL properties");
     cmd->add_option("--engine", check.engine,
@@ -326,6 +327,11 @@ int run(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     app.exit(e);  // prints the message
+    return semo::cli::kBadInput;
+  }
+  // A malformed SEMO_THREADS is said, not quietly replaced by the default.
+  if (const std::string why = semo::checker::threadsSettingError(); !why.empty()) {
+    std::cerr << "semo-verify: error: " << why << "\n";
     return semo::cli::kBadInput;
   }
   if (*parseCmd) return semo::cli::runParse(parse);

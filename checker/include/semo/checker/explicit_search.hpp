@@ -22,6 +22,16 @@ struct Progress {
   bool counted = false;
 };
 
+// The threads a search takes when none are asked for: SEMO_THREADS when it is a whole number from
+// 1 to 256 (threadsSettingError() says when it is not), else one per processor this process may
+// run on (its affinity mask, which taskset and containers narrow). A test runner that runs two
+// checks at once on two cores sets SEMO_THREADS=1: four threads on two cores took 15 % more
+// processor time (two checks of patrol side by side: 45 s against 39, 2026-11-29), as the search's
+// threads wait for each other by spinning first.
+unsigned defaultThreads();
+// Why SEMO_THREADS is not a thread count; empty when it is one, or unset or empty.
+std::string threadsSettingError();
+
 struct SearchLimits {
   std::uint64_t maxStates = 50'000'000;
   std::uint64_t maxMemoryBytes = 8ull << 30;
@@ -32,7 +42,7 @@ struct SearchLimits {
   // Store one state per orbit of interchangeable robots (checker/symmetry.hpp); the verdicts are
   // the same, the counts are of orbits.
   bool symmetry = true;
-  // Threads that generate and insert successors; results do not depend on it.
+  // Threads that generate and insert successors; results do not depend on it (defaultThreads()).
   unsigned threads = 1;
   // Called about once a second during a long search (never for searches under a second).
   std::function<void(const Progress&)> onProgress;
