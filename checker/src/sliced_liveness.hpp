@@ -8,6 +8,7 @@
 
 #include "semo/checker/compiled_model.hpp"
 #include "semo/checker/explicit_search.hpp"
+#include "semo/checker/liveness_search.hpp"
 #include "semo/checker/slicing.hpp"
 
 namespace semo::checker::detail {
@@ -41,7 +42,7 @@ struct SlicedOutcome {
 // there and rebuilt on the whole model becomes `out`'s verdict (hunted); otherwise out.why says how
 // the hunt ended. Never a proof.
 void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLimits& limits, SlicedOutcome& out,
-                const ControlFacts* facts = nullptr, double symbolicSeconds = 90);
+                const ControlFacts* facts = nullptr, double symbolicSeconds = LivenessOptions{}.symbolicSeconds);
 
 // Random walks on the whole model for a fair violation (lasso_walks.hpp): a lasso found becomes
 // `out`'s verdict (walked); otherwise out.why says how many walks found none. Never a proof.
@@ -53,6 +54,6 @@ void walkForLasso(const CompiledModel& full, std::size_t property, const SearchL
 // time (LivenessOptions::symbolicSeconds).
 SlicedOutcome checkSliced(const CompiledModel& full, const ControlFacts& facts, std::size_t property, const SearchLimits& limits,
                           std::uint64_t sliceStates, bool symbolic, std::optional<std::uint64_t> walkSeed = 1,
-                          double symbolicSeconds = 90);
+                          double symbolicSeconds = LivenessOptions{}.symbolicSeconds);
 
 }  // namespace semo::checker::detail

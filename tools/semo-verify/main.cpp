@@ -109,7 +109,8 @@ int run(int argc, char** argv) {
     cmd->add_option("--seed", check.walkSeed, "Seed of those random walks (default 1): the same seed gives the same walks and verdicts")
         ->check(kSeed);
     cmd->add_option("--symbolic-seconds", check.symbolicSeconds,
-                    "Processor time the symbolic searches of one LTL property may take, its slices and the hunt on its cone (default 90; less ends an undecided property sooner)")
+                    "Processor time the symbolic searches of one LTL property may take, its slices and the hunt on its cone (default " +
+                        std::to_string(static_cast<int>(check.symbolicSeconds)) + "; less ends an undecided property sooner)")
         ->check(CLI::Range(1.0, 86400.0));
     cmd->add_option("--slice-states", check.sliceStates,
                     "Product states one slice of the model may take (default 500000; --max-states, if lower, bounds it too)")
