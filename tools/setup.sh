@@ -18,7 +18,9 @@ missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
-step() { printf '\n== %s\n' "$*"; }
+# Each step's header says when it started (seconds since this script did), so that a log shows
+# where the time went.
+step() { printf '\n== %s  [%d s]\n' "$*" "$SECONDS"; }
 
 # apt's own output goes to a log file: the terminal gets one line, and the log's end if it fails.
 packages_log="setup-packages.log"

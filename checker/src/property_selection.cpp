@@ -24,38 +24,54 @@ bool globMatches(std::string_view glob, std::string_view name) {
   return g == glob.size();
 }
 
+namespace {
+
+// A glob without a bracket names a family too, as the verify block's `check unique_leader` does:
+// `unique_leader` matches unique_leader[ReportPapers].
+bool matchesWithFamily(std::string_view glob, std::string_view name) {
+  return globMatches(glob, name) || (glob.find('[') == std::string_view::npos && globMatches(std::string(glob) + "[*]", name));
+}
+
+}  // namespace
+
+bool propertySelected(const std::vector<std::string>& globs, const std::vector<std::string>& names) {
+  bool anyChoosing = false, chosen = false;
+  for (const std::string& g : globs) {
+    const bool leavesOut = !g.empty() && g[0] == '!';
+    const std::string_view glob = leavesOut ? std::string_view(g).substr(1) : std::string_view(g);
+    bool matches = false;
+    for (const std::string& name : names) matches = matches || matchesWithFamily(glob, name);
+    if (leavesOut && matches) return false;
+    anyChoosing = anyChoosing || !leavesOut;
+    chosen = chosen || (!leavesOut && matches);
+  }
+  return chosen || !anyChoosing;
+}
+
 std::vector<std::string> selectProperties(ir::Model& model, const std::vector<std::string>& globs) {
-  // A glob without a bracket names a family too, as the verify block's `check unique_leader` does:
-  // `unique_leader` matches unique_leader[ReportPapers].
-  auto matches = [](const std::string& g, const std::string& name) {
-    return globMatches(g, name) || (g.find('[') == std::string::npos && globMatches(g + "[*]", name));
-  };
-  auto chosen = [&](const std::string& name) {
-    for (const std::string& g : globs) {
-      if (matches(g, name)) return true;
-    }
-    return false;
-  };
   std::vector<std::string> all, kept;
   for (const ir::Invariant& i : model.invariants) all.push_back(i.name);
   if (model.validEnd) all.push_back("deadlock_freedom");
   for (const ir::Property& p : model.properties) all.push_back(p.name);
+  auto refuse = [&](const std::string& why) {
+    std::string names;
+    for (const std::string& name : all) names += (names.empty() ? "" : ", ") + name;
+    throw std::invalid_argument(why + "; its properties: " + (names.empty() ? std::string("none") : names));
+  };
   for (const std::string& g : globs) {
+    const std::string_view glob = !g.empty() && g[0] == '!' ? std::string_view(g).substr(1) : std::string_view(g);
     bool any = false;
-    for (const std::string& name : all) any = any || matches(g, name);
-    if (!any) {
-      std::string names;
-      for (const std::string& name : all) names += (names.empty() ? "" : ", ") + name;
-      throw std::invalid_argument("--prop '" + g + "' matches no property of the model; its properties: " +
-                                  (names.empty() ? std::string("none") : names));
-    }
+    for (const std::string& name : all) any = any || matchesWithFamily(glob, name);
+    if (!any) refuse("--prop '" + g + "' matches no property of the model");
   }
+  auto chosen = [&](const std::string& name) { return propertySelected(globs, {name}); };
   std::erase_if(model.invariants, [&](const ir::Invariant& i) { return !chosen(i.name); });
   std::erase_if(model.properties, [&](const ir::Property& p) { return !chosen(p.name); });
   if (model.validEnd && !chosen("deadlock_freedom")) model.validEnd.reset();
   for (const std::string& name : all) {
     if (chosen(name)) kept.push_back(name);
   }
+  if (kept.empty()) refuse("--prop leaves out every property of the model");
   return kept;
 }
 

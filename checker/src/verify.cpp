@@ -159,13 +159,8 @@ void runSmt(Report& out, const ir::Model& model, const model::MissionModel* miss
     }
     out.formation = checkGroupFormation(m, &budget);
     if (!options.propertyGlobs.empty()) {
-      std::erase_if(out.formation, [&](const FormationVerdict& v) {
-        const std::string name = "group_formation[" + v.block + "]";
-        for (const std::string& g : options.propertyGlobs) {
-          if (globMatches(g, name) || (g.find('[') == std::string::npos && globMatches(g + "[*]", name))) return false;
-        }
-        return true;
-      });
+      std::erase_if(out.formation,
+                    [&](const FormationVerdict& v) { return !propertySelected(options.propertyGlobs, {"group_formation[" + v.block + "]"}); });
     }
     for (const FormationVerdict& v : out.formation) {
       const SourceRange& at = m.groupBlocks[v.blockIndex].at;
@@ -456,9 +451,7 @@ void addVacuousVerdicts(Report& out, const ir::Model& model, const model::Missio
   if (!m.assumptions.checksListed) return;
   auto family = [](const std::string& name, const std::string& check) { return name == check || name.rfind(check + "[", 0) == 0; };
   for (const std::string& check : m.assumptions.checks) {
-    bool selected = globs.empty();
-    for (const std::string& g : globs) selected = selected || globMatches(g, check) || globMatches(g, check + "[*]") || globMatches(g, check + "[]");
-    if (!selected) continue;
+    if (!globs.empty() && !propertySelected(globs, {check, check + "[*]", check + "[]"})) continue;
     bool any = check == "deadlock_freedom" ? model.validEnd.has_value() : false;
     for (const ir::Invariant& i : model.invariants) any = any || family(i.name, check);
     for (const ir::Property& p : model.properties) any = any || family(p.name, check);

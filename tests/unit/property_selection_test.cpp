@@ -40,6 +40,32 @@ TEST(PropertySelection, KeepsTheChosenPropertiesAndDropsDeadlockFreedomUnlessCho
   EXPECT_EQ(selectProperties(copy, {"deadlock_freedom"}), std::vector<std::string>{"deadlock_freedom"});
   EXPECT_TRUE(copy.validEnd.has_value());
   EXPECT_TRUE(copy.invariants.empty());
+  // `!` leaves out: alone, everything but what it matches; with other globs, what they choose but it.
+  copy = m;
+  EXPECT_EQ(selectProperties(copy, {"!mode_agreement"}),
+            (std::vector<std::string>{"unique_leader[A]", "unique_leader[B]", "safe", "deadlock_freedom"}));
+  EXPECT_TRUE(copy.properties.empty());
+  EXPECT_TRUE(copy.validEnd.has_value());
+  copy = m;
+  EXPECT_EQ(selectProperties(copy, {"unique_leader", "!*[B]"}), std::vector<std::string>{"unique_leader[A]"});
+  EXPECT_TRUE(propertySelected({"!unique_leader[*]"}, {"unique_leader", "unique_leader[*]", "unique_leader[]"}) == false);
+  EXPECT_TRUE(propertySelected({"!unique_leader"}, {"mode_agreement"}));
+  EXPECT_FALSE(propertySelected({"safe", "!mode_agreement"}, {"unique_leader[A]"}));
+  copy = m;
+  try {
+    selectProperties(copy, {"!*"});
+    FAIL() << "a selection that leaves nothing is an error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--prop leaves out every property of the model; its properties: unique_leader[A]"), std::string::npos)
+        << e.what();
+  }
+  copy = m;
+  try {
+    selectProperties(copy, {"!nosuch"});
+    FAIL() << "a `!` glob that matches nothing is an error too";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'!nosuch' matches no property"), std::string::npos) << e.what();
+  }
   copy = m;
   try {
     selectProperties(copy, {"safe", "nosuch*"});

@@ -146,7 +146,8 @@ int run(int argc, char** argv) {
   checkCmd->add_option("--msc", check.msc, "Draw the first counterexample as a message sequence chart (SVG) in this file");
   checkCmd->add_option("--prop", check.props,
                        "Decide only this property (repeatable; a glob: `*` any text, `?` one character, brackets literal; a name "
-                       "without brackets also means its family: --prop unique_leader); overrides the verify block's list");
+                       "without brackets also means its family: --prop unique_leader; a leading ! leaves out what it matches: --prop "
+                       "'!mode_agreement'); overrides the verify block's list");
   checkCmd->add_option("--props", check.propsFile,
                        "Decide only the properties this file names: a name or glob per line, or `check a, b` lines as in the verify "
                        "block; # starts a comment");

@@ -128,10 +128,15 @@ struct Report {
 // else literal, brackets included, so that `unique_leader[*]` means every unique_leader.
 bool globMatches(std::string_view glob, std::string_view name);
 
-// Keeps the invariants and LTL properties (and deadlock_freedom, the model's valid end) whose names
-// match one of `globs` (a glob without `[` also matches the family `glob[...]`, as the verify
-// block's `check unique_leader` does), and returns the names kept. A glob that matches none of them is a
-// std::invalid_argument naming the model's properties.
+// Whether --prop's `globs` choose a property known by any of `names` (a name and its aliases): a
+// glob without `[` also matches the family `glob[...]`, as the verify block's `check unique_leader`
+// does; a glob starting with `!` leaves out what it matches. Chosen: matched by no `!` glob, and by
+// one of the others (or there are only `!` globs: everything but what they leave out).
+bool propertySelected(const std::vector<std::string>& globs, const std::vector<std::string>& names);
+
+// Keeps the invariants and LTL properties (and deadlock_freedom, the model's valid end) that `globs`
+// choose (propertySelected), and returns the names kept. A glob that matches none of them, or a
+// selection that leaves none, is a std::invalid_argument naming the model's properties.
 std::vector<std::string> selectProperties(ir::Model& model, const std::vector<std::string>& globs);
 
 std::optional<Report> verify(const ir::Model& model, const model::MissionModel* mission, const VerifyOptions& options,
