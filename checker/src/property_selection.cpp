@@ -1,5 +1,6 @@
 // --prop: choosing which properties a run decides (verify.hpp).
 #include <stdexcept>
+#include <utility>
 
 #include "semo/checker/verify.hpp"
 
@@ -32,13 +33,18 @@ bool matchesWithFamily(std::string_view glob, std::string_view name) {
   return globMatches(glob, name) || (glob.find('[') == std::string_view::npos && globMatches(std::string(glob) + "[*]", name));
 }
 
+// A --prop glob without its leading `!`, and whether it had one (it leaves out what it matches).
+std::pair<std::string_view, bool> withoutNegation(const std::string& g) {
+  const bool leavesOut = !g.empty() && g[0] == '!';
+  return {std::string_view(g).substr(leavesOut ? 1 : 0), leavesOut};
+}
+
 }  // namespace
 
 bool propertySelected(const std::vector<std::string>& globs, const std::vector<std::string>& names) {
   bool anyChoosing = false, chosen = false;
   for (const std::string& g : globs) {
-    const bool leavesOut = !g.empty() && g[0] == '!';
-    const std::string_view glob = leavesOut ? std::string_view(g).substr(1) : std::string_view(g);
+    const auto [glob, leavesOut] = withoutNegation(g);
     bool matches = false;
     for (const std::string& name : names) matches = matches || matchesWithFamily(glob, name);
     if (leavesOut && matches) return false;
@@ -59,7 +65,7 @@ std::vector<std::string> selectProperties(ir::Model& model, const std::vector<st
     throw std::invalid_argument(why + "; its properties: " + (names.empty() ? std::string("none") : names));
   };
   for (const std::string& g : globs) {
-    const std::string_view glob = !g.empty() && g[0] == '!' ? std::string_view(g).substr(1) : std::string_view(g);
+    const std::string_view glob = withoutNegation(g).first;
     bool any = false;
     for (const std::string& name : all) any = any || matchesWithFamily(glob, name);
     if (!any) refuse("--prop '" + g + "' matches no property of the model");
