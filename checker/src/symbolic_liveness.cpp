@@ -13,12 +13,23 @@
 #include "semo/checker/buchi.hpp"
 #include "semo/checker/fairness.hpp"
 #include "semo/checker/trace.hpp"
+#include "symbolic_apart.hpp"
 #include "symbolic_product.hpp"
 
 namespace semo::checker::detail {
 namespace {
 
 std::mutex packageLock;  // BuDDy's package is one per process
+
+}  // namespace
+}  // namespace semo::checker::detail
+
+// BuDDy's flag for a started package (kernel.c; exported by libbdd, not in its public header):
+// bdd_init refuses to start a package while it is set. A forked child clears it to start its own.
+extern "C" int bddrunning;
+
+namespace semo::checker::detail {
+namespace {
 
 // A loop on a settling world decides each sensed condition one way only. The fair states are
 // first found with every rule allowed in the loop; where their steps decide a condition both ways,
@@ -237,9 +248,15 @@ class SymbolicLasso {
   std::vector<Move> moves_;
 };
 
-}  // namespace
+// A model of more than 32 bits of state: its search may take seconds to minutes.
+bool large(const ir::Model& model) {
+  std::size_t bits = 0;
+  for (const ir::Variable& v : model.variables) bits += static_cast<std::size_t>(std::bit_width(static_cast<std::uint64_t>(v.max - v.min)));
+  return bits > 32;
+}
 
-SymbolicOutcome decideSymbolically(const ir::Model& model, std::size_t property, const SymbolicLimits& limits) {
+// The search itself; the caller holds the package (packageLock, or a child process of its own).
+SymbolicOutcome searchHoldingPackage(const ir::Model& model, std::size_t property, const SymbolicLimits& limits) {
   SymbolicOutcome out;
   const ir::Property& prop = model.properties.at(property);
   Buchi ba;
@@ -251,7 +268,6 @@ SymbolicOutcome decideSymbolically(const ir::Model& model, std::size_t property,
   }
   const Fairness fairness = Fairness::of(model);
   const Sensing sensing = Sensing::in(model);
-  std::lock_guard<std::mutex> hold(packageLock);
   const auto start = CpuClock::now();
   const auto deadline = start + std::chrono::duration_cast<CpuClock::duration>(std::chrono::duration<double>(limits.seconds));
   packageError = 0;
@@ -259,9 +275,7 @@ SymbolicOutcome decideSymbolically(const ir::Model& model, std::size_t property,
   const std::uint64_t nodes = std::clamp<std::uint64_t>(limits.maxMemoryBytes / 32, 10'000, 1u << 28);
   // A small table for a small model (the tests search hundreds), a larger one for a large model;
   // it grows by up to four million nodes at a time.
-  std::size_t bits = 0;
-  for (const ir::Variable& v : model.variables) bits += static_cast<std::size_t>(std::bit_width(static_cast<std::uint64_t>(v.max - v.min)));
-  const std::uint64_t first = bits > 32 ? 1u << 20 : 1u << 16;
+  const std::uint64_t first = large(model) ? 1u << 20 : 1u << 16;
   bdd_init(static_cast<int>(std::min(nodes, first)), static_cast<int>(first / 4));
   bdd_setmaxincrease(1 << 22);
   bdd_error_hook(recordError);
@@ -311,6 +325,30 @@ SymbolicOutcome decideSymbolically(const ir::Model& model, std::size_t property,
                  out.reachable, out.worlds, out.seconds, out.why.c_str());
   }
   return out;
+}
+
+}  // namespace
+
+// BuDDy's package is one per process. When another thread is inside it, a large model's search
+// runs in a child process (symbolic_apart.hpp) instead of waiting its turn, so that the properties
+// searched on several threads are searched side by side; otherwise here, as a child costs page
+// faults (its writes copy the parent's pages: one property of scouting took 87 s forked against
+// 67 s here; checker/README.md). A small model (the tests search hundreds, each in milliseconds)
+// waits its turn.
+SymbolicOutcome decideSymbolically(const ir::Model& model, std::size_t property, const SymbolicLimits& limits) {
+  if (large(model)) {
+    std::unique_lock<std::mutex> ours(packageLock, std::try_to_lock);
+    if (ours.owns_lock()) return searchHoldingPackage(model, property, limits);
+    std::optional<SymbolicOutcome> apart = searchInChildProcess(limits, [&](const SymbolicLimits& mine) {
+      // The fork copied the package as another thread was using it: started again from nothing
+      // (the copy's tables are left to the child's end).
+      bddrunning = 0;
+      return searchHoldingPackage(model, property, mine);
+    });
+    if (apart) return std::move(*apart);
+  }
+  const std::lock_guard<std::mutex> hold(packageLock);
+  return searchHoldingPackage(model, property, limits);
 }
 
 }  // namespace semo::checker::detail

@@ -1,10 +1,17 @@
 // The symbolic liveness search (checker/src/symbolic_liveness.hpp): on random models it must give
 // the explicit search's verdict on every property, and every lasso it builds must pass the
 // independent lasso check; the sliced search that hands its large slices to it must agree too, and
-// so must its hunt for quiet loops; a node table too small for the model gives up without harm.
+// so must its hunt for quiet loops; a node table too small for the model gives up without harm;
+// searches on several threads, some of them in child processes, agree with one at a time.
 #include <gtest/gtest.h>
 
+#include <signal.h>
+#include <unistd.h>
+
+#include <thread>
+
 #include "../../checker/src/sliced_liveness.hpp"
+#include "../../checker/src/symbolic_apart.hpp"
 #include "../../checker/src/symbolic_liveness.hpp"
 #include "ir_support.hpp"
 #include "random_model.hpp"
@@ -183,6 +190,111 @@ TEST(SymbolicLiveness, ANodeTableTooSmallGivesUpAndTheNextSearchStillWorks) {
   EXPECT_NE(starved.why.find("decision diagrams"), std::string::npos) << starved.why;
   const SymbolicOutcome fed = detail::decideSymbolically(m, 0, {});
   EXPECT_NE(fed.kind, SymbolicOutcome::Kind::GaveUp) << fed.why;
+}
+
+// A random model with 48 more bits of state, none of them read: a "large" model, whose search
+// runs in a child process when another thread is inside the decision-diagram package.
+ir::Model paddedModel(std::uint32_t seed) {
+  std::string text = test::RandomModel(seed).text();
+  const std::string slot = "var slot : 0..2 = 0;\n";
+  text.insert(text.find(slot) + slot.size(), "var pad0 : 0..65535 = 0;\nvar pad1 : 0..65535 = 0;\nvar pad2 : 0..65535 = 0;\n");
+  return test::parseIr(text);
+}
+
+TEST(SymbolicLiveness, SearchesOnSeveralThreadsSomeInChildProcessesAgreeWithOneAtATime) {
+  std::vector<ir::Model> models;
+  for (std::uint32_t seed = 1; seed <= 3; ++seed) models.push_back(paddedModel(seed));
+  struct Result {
+    SymbolicOutcome::Kind kind;
+    double reachable;
+  };
+  std::vector<std::vector<Result>> alone(models.size());
+  for (std::size_t i = 0; i < models.size(); ++i) {
+    for (std::size_t k = 0; k < models[i].properties.size(); ++k) {
+      const SymbolicOutcome s = detail::decideSymbolically(models[i], k, {});
+      ASSERT_NE(s.kind, SymbolicOutcome::Kind::GaveUp) << s.why;
+      alone[i].push_back({s.kind, s.reachable});
+    }
+  }
+  const std::uint64_t before = detail::searchesInChildProcesses();
+  // Three threads through the same searches, each from a different model on: the package is often
+  // busy when one of them starts a search.
+  std::vector<std::string> disagreements[3];
+  std::vector<std::thread> threads;
+  for (std::size_t t = 0; t < 3; ++t) {
+    threads.emplace_back([&, t] {
+      for (std::size_t n = 0; n < models.size(); ++n) {
+        const std::size_t i = (n + t * models.size() / 3) % models.size();
+        for (std::size_t k = 0; k < models[i].properties.size(); ++k) {
+          const SymbolicOutcome s = detail::decideSymbolically(models[i], k, {});
+          const bool lassoHolds = s.kind != SymbolicOutcome::Kind::Violation ||
+                                  (s.lasso && checkLasso(models[i], *s.lasso, models[i].properties[k]).counterexample());
+          if (s.kind != alone[i][k].kind || s.reachable != alone[i][k].reachable || !lassoHolds) {
+            disagreements[t].push_back("model " + std::to_string(i + 1) + " property " + models[i].properties[k].name + ": " + s.why);
+          }
+        }
+      }
+    });
+  }
+  for (std::thread& t : threads) t.join();
+  for (const auto& d : disagreements) EXPECT_TRUE(d.empty()) << d.front();
+  EXPECT_GT(detail::searchesInChildProcesses(), before);  // some searches did run apart
+}
+
+TEST(SymbolicLiveness, AChildProcessPassesOnItsProgressAndItsOutcome) {
+  detail::SymbolicLimits limits;
+  std::vector<std::uint64_t> seen;
+  limits.onProgress = [&](const Progress& p) { seen.push_back(p.states); };
+  const std::optional<SymbolicOutcome> got = detail::searchInChildProcess(limits, [](const detail::SymbolicLimits& mine) {
+    for (std::uint64_t states : {17u, 4242u}) {
+      Progress p;
+      p.states = states;
+      p.counted = true;
+      mine.onProgress(p);
+    }
+    SymbolicOutcome out;
+    out.kind = SymbolicOutcome::Kind::Violation;
+    out.reachable = 1.5e20;
+    out.worlds = 3;
+    out.why = "why not";
+    Trace lasso;
+    lasso.property = "p";
+    lasso.kind = "lasso";
+    lasso.initial = {0, -7, 1};
+    lasso.steps = {{2, 1, {{0, 0, 1}, {1, -7, 5}}}, {0, 0, {}}};
+    lasso.loopStart = 1;
+    out.lasso = lasso;
+    return out;
+  });
+  ASSERT_TRUE(got.has_value());
+  EXPECT_EQ(seen, (std::vector<std::uint64_t>{17, 4242}));
+  EXPECT_EQ(got->kind, SymbolicOutcome::Kind::Violation);
+  EXPECT_EQ(got->reachable, 1.5e20);
+  EXPECT_EQ(got->worlds, 3u);
+  EXPECT_EQ(got->why, "why not");
+  ASSERT_TRUE(got->lasso.has_value());
+  EXPECT_EQ(got->lasso->initial, (std::vector<std::int32_t>{0, -7, 1}));
+  ASSERT_EQ(got->lasso->steps.size(), 2u);
+  EXPECT_EQ(got->lasso->steps[0].rule, 2u);
+  EXPECT_EQ(got->lasso->steps[0].branch, 1u);
+  ASSERT_EQ(got->lasso->steps[0].changes.size(), 2u);
+  EXPECT_EQ(got->lasso->steps[0].changes[1].before, -7);
+  EXPECT_EQ(got->lasso->steps[0].changes[1].after, 5);
+  EXPECT_EQ(got->lasso->loopStart, 1u);
+  EXPECT_EQ(got->lasso->property, "p");
+}
+
+TEST(SymbolicLiveness, AChildProcessThatDiesGivesUpSayingHow) {
+  const std::optional<SymbolicOutcome> killed =
+      detail::searchInChildProcess({}, [](const detail::SymbolicLimits&) -> SymbolicOutcome { ::kill(::getpid(), SIGKILL); return {}; });
+  ASSERT_TRUE(killed.has_value());
+  EXPECT_EQ(killed->kind, SymbolicOutcome::Kind::GaveUp);
+  EXPECT_NE(killed->why.find("ended by signal 9"), std::string::npos) << killed->why;
+  const std::optional<SymbolicOutcome> quit =
+      detail::searchInChildProcess({}, [](const detail::SymbolicLimits&) -> SymbolicOutcome { ::_exit(7); });
+  ASSERT_TRUE(quit.has_value());
+  EXPECT_EQ(quit->kind, SymbolicOutcome::Kind::GaveUp);
+  EXPECT_NE(quit->why.find("without an answer (exit code 7)"), std::string::npos) << quit->why;
 }
 
 }  // namespace
