@@ -232,8 +232,11 @@ std::optional<SymbolicOutcome> searchInChildProcess(const SymbolicLimits& limits
       if (header[0] == kProgressFrame) {
         if (limits.onProgress) limits.onProgress(decodeProgress(payload));
       } else if (header[0] == kOutcomeFrame) {
+        // Done: not waiting for the end of the stream, which a sibling child forked meanwhile by
+        // another thread holds open (its copy of this pipe's writing end) until it ends.
         out = decodeOutcome(payload);
         answered = true;
+        break;
       }
     }
   } catch (const std::exception& e) {
