@@ -40,9 +40,9 @@ struct SymbolicOutcome {
 };
 
 // Whether `model` has a fair run violating its property `property` (on a settling world when the
-// property asks for one). Thread-safe: the decision-diagram package is one per process, so a large
-// model is searched in a child process of its own (calls run side by side), a small one here
-// (calls wait for each other).
+// property asks for one). Thread-safe: the decision-diagram package is one per process; while
+// another call holds it, a large model is searched in a child process of its own (the calls run
+// side by side), a small one waits its turn.
 SymbolicOutcome decideSymbolically(const ir::Model& model, std::size_t property, const SymbolicLimits& limits);
 
 }  // namespace semo::checker::detail
