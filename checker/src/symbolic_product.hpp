@@ -49,7 +49,7 @@ class SymbolicProduct {
       : model_(model), ba_(ba), fairness_(fairness), deadline_(deadline), onProgress_(std::move(onProgress)) {
     int bits = 0;
     auto layOut = [&bits](std::int64_t min, std::int64_t max) {
-      Layout l{bits, 0, min, max};
+      BitLayout l{bits, 0, min, max};
       while ((std::int64_t{1} << l.bits) < max - min + 1) ++l.bits;
       bits += l.bits;
       return l;
@@ -286,12 +286,12 @@ class SymbolicProduct {
   Concrete pick(const bdd& set) const {
     const bdd one = bdd_satoneset(set, currentBits_, bddfalse);
     Concrete c;
-    auto read = [&](const Layout& l) {
+    auto read = [&](const BitLayout& l) {
       std::int64_t offset = 0;
       for (int i = 0; i < l.bits; ++i) offset = offset << 1 | ((one & bdd_nithvar(bit(l, i, false))) == bddfalse ? 1 : 0);
       return l.min + offset;
     };
-    for (const Layout& l : layouts_) c.values.push_back(read(l));
+    for (const BitLayout& l : layouts_) c.values.push_back(read(l));
     c.automaton = static_cast<std::uint32_t>(read(automaton_));
     return c;
   }
@@ -424,10 +424,6 @@ class SymbolicProduct {
     return orders_.emplace(allowed, std::move(order)).first->second;
   }
 
-  struct Layout {
-    int first = 0, bits = 0;
-    std::int64_t min = 0, max = 0;
-  };
   struct Rule {
     bdd guard;       // enabled, on the current state
     bdd relation;    // guard and outcomes, on the current bits and the next bits of what it assigns
@@ -458,36 +454,6 @@ class SymbolicProduct {
     progressRound_ = round;
   }
 
-  static int bit(const Layout& l, int i, bool next) { return 2 * (l.first + i) + (next ? 1 : 0); }
-
-  static bdd cube(const Layout& l, std::int64_t value, bool next) {
-    bdd c = bddtrue;
-    const std::int64_t offset = value - l.min;
-    for (int i = 0; i < l.bits; ++i) {
-      const bool one = (offset >> (l.bits - 1 - i) & 1) != 0;
-      c &= one ? bdd_ithvar(bit(l, i, next)) : bdd_nithvar(bit(l, i, next));
-    }
-    return c;
-  }
-
-  static bdd bitSet(const Layout& l, bool next) {
-    std::vector<int> v;
-    for (int i = 0; i < l.bits; ++i) v.push_back(bit(l, i, next));
-    return bdd_makeset(v.data(), static_cast<int>(v.size()));
-  }
-
-  static void addPairs(bddPair* pair, const Layout& l, bool toNext) {
-    for (int i = 0; i < l.bits; ++i) bdd_setpair(pair, bit(l, i, !toNext), bit(l, i, toNext));
-  }
-
-  static bdd truth(const Values& v) {
-    bdd t = bddfalse;
-    for (const auto& [value, when] : v) {
-      if (value != 0) t |= when;
-    }
-    return t;
-  }
-
   static void add(Values& to, std::int64_t value, const bdd& when) {
     if (when == bddfalse) return;
     auto [it, added] = to.try_emplace(value, when);
@@ -500,7 +466,7 @@ class SymbolicProduct {
     switch (e.op) {
       case ir::Op::Const: add(out, e.value, bddtrue); return out;
       case ir::Op::Var: {
-        const Layout& l = layouts_[static_cast<ir::VarId>(e.value)];
+        const BitLayout& l = layouts_[static_cast<ir::VarId>(e.value)];
         for (std::int64_t k = l.min; k <= l.max; ++k) add(out, k, cube(l, k, false));
         return out;
       }
@@ -570,7 +536,7 @@ class SymbolicProduct {
     for (const ir::Branch& b : rule.branches) {
       bdd outcome = bddtrue;
       for (ir::VarId v : assigned) {
-        const Layout& l = layouts_[v];
+        const BitLayout& l = layouts_[v];
         const ir::Assignment* a = nullptr;
         for (const ir::Assignment& x : b.assignments) {
           if (x.var == v) a = &x;  // the last one counts, as in the explicit engine
@@ -611,8 +577,8 @@ class SymbolicProduct {
   CpuClock::time_point lastProgress_ = CpuClock::now();
   double progressStates_ = 0;
   std::uint32_t progressRound_ = 0;
-  Layout automaton_;
-  std::vector<Layout> layouts_;
+  BitLayout automaton_;
+  std::vector<BitLayout> layouts_;
   std::vector<Rule> rules_;
   bdd automatonRelation_, labels_, automatonCurrent_, automatonNext_, enabledFair_, currentBits_, nextBits_;
   bddPair* allToNext_ = nullptr;

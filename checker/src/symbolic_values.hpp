@@ -1,11 +1,12 @@
 #pragma once
-// The IR's expressions for the decision diagrams: value tables and the operators on values.
-// symbolic_product.hpp compiles guards and assignments with them.
+// The IR's expressions for the decision diagrams: value tables, the operators on values, and
+// where each variable's bits lie. symbolic_product.hpp compiles guards and assignments with them.
 #include <bdd.h>
 
 #include <algorithm>
 #include <cstdint>
 #include <map>
+#include <vector>
 
 #include "semo/semantics/ir.hpp"
 
@@ -38,6 +39,43 @@ inline std::int64_t evaluate(ir::Op op, std::int64_t a, std::int64_t b) {
     case ir::Op::Implies: return a == 0 || b != 0;
     default: return 0;
   }
+}
+
+// Where a variable's bits lie: its value less `min`, in `bits` bits, most significant first, each
+// bit b of the state at variable 2 * (first + b) and its next copy beside it (symbolic_product.hpp).
+struct BitLayout {
+  int first = 0, bits = 0;
+  std::int64_t min = 0, max = 0;
+};
+
+inline int bit(const BitLayout& l, int i, bool next) { return 2 * (l.first + i) + (next ? 1 : 0); }
+
+inline bdd cube(const BitLayout& l, std::int64_t value, bool next) {
+  bdd c = bddtrue;
+  const std::int64_t offset = value - l.min;
+  for (int i = 0; i < l.bits; ++i) {
+    const bool one = (offset >> (l.bits - 1 - i) & 1) != 0;
+    c &= one ? bdd_ithvar(bit(l, i, next)) : bdd_nithvar(bit(l, i, next));
+  }
+  return c;
+}
+
+inline bdd bitSet(const BitLayout& l, bool next) {
+  std::vector<int> v;
+  for (int i = 0; i < l.bits; ++i) v.push_back(bit(l, i, next));
+  return bdd_makeset(v.data(), static_cast<int>(v.size()));
+}
+
+inline void addPairs(bddPair* pair, const BitLayout& l, bool toNext) {
+  for (int i = 0; i < l.bits; ++i) bdd_setpair(pair, bit(l, i, !toNext), bit(l, i, toNext));
+}
+
+inline bdd truth(const Values& v) {
+  bdd t = bddfalse;
+  for (const auto& [value, when] : v) {
+    if (value != 0) t |= when;
+  }
+  return t;
 }
 
 }  // namespace semo::checker::detail
