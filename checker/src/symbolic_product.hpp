@@ -142,9 +142,9 @@ class SymbolicProduct {
         const bdd taken = modelPredecessors(zAfter, allowed, &fairness_.members[g], z);
         const bdd before = z;
         if (fairness_.strong[g] != 0) {
-          z = (z & !groupEnabled_[g]) | until(z, taken, allowed);
+          z = minus(z, groupEnabled_[g]) | until(z, taken, allowed);
         } else {
-          const bdd good = (z & !groupEnabled_[g]) | taken;
+          const bdd good = minus(z, groupEnabled_[g]) | taken;
           if (good != z) z = until(z, good, allowed);
         }
         if (z == before) metAt[g] = version;
@@ -184,7 +184,7 @@ class SymbolicProduct {
       return out;
     }
     for (const bdd& relation : clustersOf(allowed)) out |= preimageFrom(relation, sources, afterNext);
-    return out | (sources & afterModel & !enabledFair_);
+    return out | minus(sources & afterModel, enabledFair_);
   }
 
   // A set on the next bits (every variable's), for preimageFrom().
@@ -245,9 +245,9 @@ class SymbolicProduct {
     while (reached != before) {
       before = reached;
       bdd after = automatonPredecessors(reached);
-      reached |= z & after & !enabledFair_;  // time passing
+      reached |= minus(z & after, enabledFair_);  // time passing
       bdd afterNext = toNext(after);
-      bdd open = z & !reached;
+      bdd open = minus(z, reached);
       for (const bdd& relation : clustersOf(allowed)) {
         if (open == bddfalse) break;
         const bdd found = preimageFrom(relation, open, afterNext);
@@ -388,17 +388,17 @@ class SymbolicProduct {
       while (i < order.size() && steppedAt[i] == version) ++i;
       if (i == order.size()) {
         if (report) progressOn(reached, ++passes);
-        const bdd idle = automatonStep(reached & !enabledFair_) & within & !reached;  // time passing
+        const bdd idle = minus(automatonStep(minus(reached, enabledFair_)) & within, reached);  // time passing
         if (idle == bddfalse) return reached;
         reached |= idle;
         ++version;
         continue;
       }
       steppedAt[i] = version;
-      const bdd fresh = reached & !seen[i];
+      const bdd fresh = minus(reached, seen[i]);
       seen[i] = reached;
       const Rule& rule = rules_[order[i]];
-      const bdd added = automatonStep(bdd_replace(bdd_appex(fresh, rule.relation, bddop_and, rule.currentSet), rule.toCurrent)) & within & !reached;
+      const bdd added = minus(automatonStep(bdd_replace(bdd_appex(fresh, rule.relation, bddop_and, rule.currentSet), rule.toCurrent)) & within, reached);
       check();
       if (added == bddfalse) continue;
       reached |= added;

@@ -70,6 +70,10 @@ inline void addPairs(bddPair* pair, const BitLayout& l, bool toNext) {
   for (int i = 0; i < l.bits; ++i) bdd_setpair(pair, bit(l, i, !toNext), bit(l, i, toNext));
 }
 
+// a and not b in one pass: `a & !b` builds the complement of b first, a whole diagram's worth of
+// work for a large b (the reached set, at every image of the forward closure).
+inline bdd minus(const bdd& a, const bdd& b) { return bdd_apply(a, b, bddop_diff); }
+
 inline bdd truth(const Values& v) {
   bdd t = bddfalse;
   for (const auto& [value, when] : v) {
