@@ -191,4 +191,34 @@ class Tableau {
 
 Buchi buildBuchi(const ir::Ltl& formula) { return Tableau().run(formula); }
 
+std::vector<char> acceptedLoopStates(const Buchi& ba) {
+  const std::size_t n = ba.states.size();
+  if (n > kMaxLoopAnalysis) return std::vector<char>(n, 1);
+  // reaches[q][p]: p is reached from q in one step or more (the automata are small: a search per
+  // state is enough).
+  std::vector<std::vector<char>> reaches(n, std::vector<char>(n, 0));
+  for (std::size_t q = 0; q < n; ++q) {
+    std::vector<std::uint32_t> todo(ba.states[q].successors);
+    while (!todo.empty()) {
+      const std::uint32_t p = todo.back();
+      todo.pop_back();
+      if (reaches[q][p] != 0) continue;
+      reaches[q][p] = 1;
+      for (std::uint32_t next : ba.states[p].successors) {
+        if (reaches[q][next] == 0) todo.push_back(next);
+      }
+    }
+  }
+  std::vector<char> out(n, 0);
+  for (std::size_t q = 0; q < n; ++q) {
+    if (reaches[q][q] == 0) continue;  // on no cycle
+    std::uint64_t sets = 0;
+    for (std::size_t p = 0; p < n; ++p) {
+      if (reaches[q][p] != 0 && reaches[p][q] != 0) sets |= ba.states[p].acceptance;
+    }
+    out[q] = (sets & ba.allSets()) == ba.allSets() ? 1 : 0;
+  }
+  return out;
+}
+
 }  // namespace semo::checker

@@ -65,6 +65,13 @@ class SymbolicProduct {
     bdd_setvarnum(std::max(2, 2 * bits));
     check();
     buildAutomaton();
+    // An accepted loop stays in one component of the automaton, one with a state of every
+    // acceptance set: the fair states are looked for among those automaton states only.
+    const std::vector<char> onLoops = acceptedLoopStates(ba);
+    loopAutomaton_ = bddfalse;
+    for (std::uint32_t q = 0; q < ba.states.size(); ++q) {
+      if (onLoops[q] != 0) loopAutomaton_ |= cube(automaton_, q, false);
+    }
     for (std::uint32_t r = 0; r < model.rules.size(); ++r) rules_.push_back(compileRule(model.rules[r]));
     enabledFair_ = bddfalse;
     for (std::uint32_t r = 0; r < model.rules.size(); ++r) {
@@ -121,6 +128,7 @@ class SymbolicProduct {
   // connected component of the set is then a fair accepting loop. Conversely the states of any
   // such loop satisfy all of this, so the set is empty exactly when no such loop exists.
   bdd fairStates(bdd z, const std::vector<char>& allowed) {
+    z &= loopAutomaton_;
     std::vector<bdd> acceptance;
     for (std::size_t i = 0; i < ba_.acceptanceSets; ++i) acceptance.push_back(acceptanceSet(i));
     // A group found met by a set stays met while the set does not shrink: `version` counts the
@@ -582,6 +590,7 @@ class SymbolicProduct {
   std::vector<Rule> rules_;
   bdd automatonRelation_, labels_, automatonCurrent_, automatonNext_, enabledFair_, currentBits_, nextBits_;
   bddPair* allToNext_ = nullptr;
+  bdd loopAutomaton_;  // the automaton states that may lie on an accepted loop
   std::map<std::vector<char>, std::vector<bdd>> clusters_;  // by the rules allowed
   std::map<std::vector<char>, std::vector<std::uint32_t>> orders_;  // by the rules allowed
   bddPair* automatonToNext_ = nullptr;

@@ -247,6 +247,31 @@ TEST(Buchi, AcceptanceSetsOnePerUntil) {
   for (const BuchiState& s : safety.states) EXPECT_EQ(s.acceptance, 1u);
 }
 
+TEST(Buchi, AcceptedLoopStatesAreTheComponentsWithEverySet) {
+  Buchi b;
+  b.acceptanceSets = 2;
+  auto add = [&](std::vector<std::uint32_t> successors, std::uint64_t acceptance) {
+    BuchiState s;
+    s.successors = std::move(successors);
+    s.acceptance = acceptance;
+    b.states.push_back(s);
+  };
+  add({0, 1}, 0);  // 0: loops on itself, no set, and leads to 1
+  add({1}, 3);     // 1: a self-loop in both sets
+  add({0}, 3);     // 2: in both sets but on no cycle
+  add({4}, 1);     // 3, 4: one component, each in one of the sets
+  add({3}, 2);
+  add({5}, 1);     // 5: a self-loop in one set only
+  EXPECT_EQ(acceptedLoopStates(b), (std::vector<char>{0, 1, 0, 1, 1, 0}));
+  // Of `eventually always !x` (the negation of `always eventually x`), the state still waiting to
+  // settle loops without accepting: it is left out, the settled one kept.
+  ir::Model m = parse("semo-ir 1;\nvar x : bool;\nproperty p : always eventually {x};\n");
+  const Buchi negated = buildBuchi(ir::Ltl::unary(ir::Ltl::Kind::Not, m.properties[0].formula));
+  const std::vector<char> loops = acceptedLoopStates(negated);
+  EXPECT_NE(std::count(loops.begin(), loops.end(), 1), 0);
+  EXPECT_NE(std::count(loops.begin(), loops.end(), 0), 0);
+}
+
 TEST(IrText, PropertiesReadBackTheSame) {
   std::string text = "semo-ir 1;\nvar c : 0..3 = 0;\nrule inc @strongly_fair : c < 3 -> c' = c + 1;\n"
                      "property p1 : always ({c == 1} => eventually {c == 3});\n"

@@ -31,4 +31,11 @@ struct Buchi {
 // than 64 atoms, or an automaton of more than 100000 states.
 Buchi buildBuchi(const ir::Ltl& formula);
 
+// Which states may lie on an accepted cycle: those in a strongly connected component that has a
+// cycle and a state of every acceptance set. An accepted run ends in such a component, so a search
+// for accepted cycles may leave out every other state. An automaton of more than kMaxLoopAnalysis
+// states is not analysed (every state is marked).
+inline constexpr std::size_t kMaxLoopAnalysis = 1024;
+std::vector<char> acceptedLoopStates(const Buchi& ba);
+
 }  // namespace semo::checker
