@@ -2,6 +2,7 @@
 // From an LTL formula to a generalized Büchi automaton that accepts exactly the runs satisfying it
 // (the tableau construction of Gerth, Peled, Vardi and Wolper). The liveness engine builds the
 // automaton of the *negated* property and looks for a fair run of the model it accepts.
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
