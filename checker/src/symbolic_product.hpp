@@ -119,8 +119,9 @@ class SymbolicProduct {
 
   [[nodiscard]] double count(const bdd& states) const { return bdd_satcountset(states, currentBits_); }
 
-  // The states of `within` from which a fair accepting cycle through `within` exists, the loop
-  // using only the rules `allowed` marks (a settled world restricts the loop, not the way to it):
+  // The states of `z` on a fair accepting cycle through `z` or leading to one inside it (only
+  // those whose automaton state may lie on an accepted loop), the loop using only the rules
+  // `allowed` marks (a settled world restricts the loop, not the way to it):
   // the greatest fixpoint of Emerson and Lei. At the fixpoint every state has a successor in the
   // set and reaches, inside it, each acceptance set of the automaton, for each weakly fair group a
   // state where the group is disabled or takes a step, and for each strongly fair rule enabled
