@@ -198,14 +198,14 @@ std::vector<char> acceptedLoopStates(const Buchi& ba) {
   // state is enough).
   std::vector<std::vector<char>> reaches(n, std::vector<char>(n, 0));
   for (std::size_t q = 0; q < n; ++q) {
-    std::vector<std::uint32_t> todo(ba.states[q].successors);
-    while (!todo.empty()) {
-      const std::uint32_t p = todo.back();
-      todo.pop_back();
+    std::vector<std::uint32_t> toVisit(ba.states[q].successors);
+    while (!toVisit.empty()) {
+      const std::uint32_t p = toVisit.back();
+      toVisit.pop_back();
       if (reaches[q][p] != 0) continue;
       reaches[q][p] = 1;
       for (std::uint32_t next : ba.states[p].successors) {
-        if (reaches[q][next] == 0) todo.push_back(next);
+        if (reaches[q][next] == 0) toVisit.push_back(next);
       }
     }
   }

@@ -65,13 +65,10 @@ class SymbolicProduct {
     bdd_setvarnum(std::max(2, 2 * bits));
     check();
     buildAutomaton();
-    // An accepted loop stays in one component of the automaton, one with a state of every
-    // acceptance set: the fair states are looked for among those automaton states only.
+    // An accepted loop stays in one automaton component with a state of every acceptance set.
     const std::vector<char> onLoops = acceptedLoopStates(ba);
     loopAutomaton_ = bddfalse;
-    for (std::uint32_t q = 0; q < ba.states.size(); ++q) {
-      if (onLoops[q] != 0) loopAutomaton_ |= cube(automaton_, q, false);
-    }
+    for (std::uint32_t q = 0; q < ba.states.size(); ++q) loopAutomaton_ |= onLoops[q] != 0 ? cube(automaton_, q, false) : bddfalse;
     for (std::uint32_t r = 0; r < model.rules.size(); ++r) rules_.push_back(compileRule(model.rules[r]));
     enabledFair_ = bddfalse;
     for (std::uint32_t r = 0; r < model.rules.size(); ++r) {
