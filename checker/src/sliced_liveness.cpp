@@ -31,8 +31,12 @@ using rebuild::Concretizer;
 constexpr std::uint32_t kMaxRefinements = 32;
 
 // Of a property's symbolic time (LivenessOptions::symbolicSeconds), the hunt on its cone keeps
-// the last ninth, at most 20 s, for when no slice decided.
-double huntSeconds(double symbolicSeconds) { return std::min(20.0, symbolicSeconds / 9); }
+// the last ninth up to 180 s of it (20 s), and half of what is given beyond: the slices of a large
+// model stop gaining long before its hunt has searched every settling world (scouting's light
+// watch handed over: 160 s; specs/examples/README.md).
+double huntSeconds(double symbolicSeconds) {
+  return symbolicSeconds <= 180 ? symbolicSeconds / 9 : 20 + (symbolicSeconds - 180) / 2;
+}
 
 SlicedOutcome refineSlices(const CompiledModel& full, const ControlFacts& facts, std::size_t property, const SearchLimits& limits,
                            std::uint64_t sliceStates, bool symbolic, double symbolicBudget) {
@@ -189,8 +193,9 @@ void walkForLasso(const CompiledModel& full, std::size_t property, const SearchL
 
 // Slices over-approximate, so their lassos may keep failing on the model while a real violation
 // hides among them. The hunt looks at the property's whole cone instead (exact), without the
-// crashes and environment steps no fairness asks for, and for a loop that senses nothing (settled
-// on any world): every fair lasso found there is one of the model's, rebuilt on it as a slice's.
+// crashes and environment steps no fairness asks for: first for a loop that senses nothing (settled
+// on any world, and cheap), then on each settling world: every fair lasso found there is one of
+// the model's, rebuilt on it as a slice's.
 void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLimits& limits, SlicedOutcome& out,
                 const ControlFacts* facts, double symbolicSeconds) {
   const ControlFacts none{{}, {}, 0, 0};
@@ -212,6 +217,7 @@ void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLim
   hunt.seconds = symbolicSeconds - out.symbolicSeconds;
   hunt.onProgress = limits.onProgress;
   hunt.quietLoop = true;
+  hunt.thenSettled = true;
   const SymbolicOutcome r = decideSymbolically(cone.model, 0, hunt);
   out.symbolicSeconds += r.seconds;
   std::string found;
@@ -228,7 +234,7 @@ void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLim
     }
     found = "its lasso could not be rebuilt (" + concretizer.why() + ")";
   } else {
-    found = r.kind == SymbolicOutcome::Kind::NoViolation ? "no fair loop that senses nothing" : "gave up (" + r.why + ")";
+    found = r.kind == SymbolicOutcome::Kind::NoViolation ? "no fair loop on any settling world" : "gave up (" + r.why + ")";
   }
   out.why += "; a hunt on the property's cone of " + std::to_string(cone.variables.size()) + " variables without crashes: " + found;
 }

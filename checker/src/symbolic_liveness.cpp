@@ -297,7 +297,11 @@ SymbolicOutcome searchHoldingPackage(const ir::Model& model, std::size_t propert
     // A step of a slice (or of the cone) that would leave a declared range is no step: the
     // relation has no such outcome (LivenessOptions::slice says why that is sound).
     SettledSearch search(product, sensing, model.rules.size());
-    const bool violated = limits.quietLoop ? search.violatedQuietly(reach) : search.violated(reach, prop.settled);
+    bool violated = limits.quietLoop ? search.violatedQuietly(reach) : search.violated(reach, prop.settled);
+    // A hunt with no quiet loop goes on to loops that sense, one settling world at a time, with
+    // the time it has left: the dearer search, and the one a violation needs when the loop keeps
+    // reading a sensor (two robots that settle on different readings).
+    if (!violated && limits.quietLoop && limits.thenSettled) violated = search.violated(reach, prop.settled);
     out.worlds = search.worlds();
     if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) {
       std::fprintf(stderr, "[symbolic] fair states searched in %u worlds: %s, %.1f s\n", out.worlds, violated ? "some" : "none",

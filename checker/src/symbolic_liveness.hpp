@@ -24,6 +24,9 @@ struct SymbolicLimits {
   // Look only for loops that take no sensing step (a hunt for violations: a loop that senses
   // nothing is settled on any world; "no violation" then proves nothing).
   bool quietLoop = false;
+  // With quietLoop: when no quiet loop is found, search every settling world after all (still a
+  // hunt: its "no violation" proves nothing about the rules a hunt leaves out).
+  bool thenSettled = false;
   // Called about once a second: the product states reached (or still candidates for a fair
   // cycle), the round as the depth, the node table's bytes.
   std::function<void(const Progress&)> onProgress;

@@ -78,7 +78,8 @@ template <class V> void describe(V& v, PlanTable& x) {
   v.field("name", x.name), v.field("points", x.points), v.field("rows", x.rows), v.field("firstRow", x.firstRow);
 }
 template <class V> void describe(V& v, ModeTable& x) {
-  v.field("name", x.name), v.field("entry", x.entry), v.field("catches", x.catches), v.field("defaultTarget", x.defaultTarget);
+  v.field("name", x.name), v.field("entry", x.entry), v.field("catches", x.catches), v.field("defaultTarget", x.defaultTarget),
+      v.field("keepsLeaders", x.keepsLeaders);
 }
 template <class V> void describe(V& v, EventTable& x) {
   v.field("name", x.name), v.field("reliable", x.reliable), v.field("retransmissions", x.retransmissions), v.field("lossy", x.lossy);

@@ -387,7 +387,7 @@ class StrategyReader {
   }
 
   void readLeaderSelection(const XMLElement* e, Strategy& s) {
-    xml_.checkAttributes(e, {"service", "algorithm", "reelection", "heartbeat", "timeout"});
+    xml_.checkAttributes(e, {"service", "algorithm", "reelection", "on-mode-change", "heartbeat", "timeout"});
     xml_.checkChildren(e, {});
     auto service = xml_.required(e, "service");
     if (!service) return;
@@ -418,6 +418,12 @@ class StrategyReader {
       }
     } else if (reelection != "timeout") {
       xml_.attributeError(e, "reelection", "reelection must be 'timeout' or 'formation', not '" + reelection + "'");
+    }
+    const std::string onModeChange = e->Attribute("on-mode-change") ? e->Attribute("on-mode-change") : "release";
+    if (onModeChange == "keep") {
+      ls.onModeChange = LeaderSelection::OnModeChange::Keep;
+    } else if (onModeChange != "release") {
+      xml_.attributeError(e, "on-mode-change", "on-mode-change must be 'release' or 'keep', not '" + onModeChange + "'");
     }
     if (auto hb = xml_.durationMicros(e, "heartbeat")) ls.heartbeatMillis = *hb / 1000;
     if (auto to = xml_.durationMicros(e, "timeout")) ls.timeoutMillis = *to / 1000;

@@ -282,7 +282,12 @@ void Team::enterMode(Id robot, Id mode) {
   RobotRun& r = robots_[robot];
   const TeamTable& team = t_.teams[t_.robots[robot].team];
   r.mode = mode;
-  std::fill(r.leads.begin(), r.leads.end(), std::uint8_t{0});
+  // Its services restart: it leaves every block, and stops leading but where the strategy keeps
+  // the leadership across modes (on-mode-change="keep") and this mode runs the block again.
+  const std::vector<Id>& kept = team.modes[mode].keepsLeaders;
+  for (Id lb = 0; lb < r.leads.size(); ++lb) {
+    if (std::find(kept.begin(), kept.end(), lb) == kept.end()) r.leads[lb] = 0;
+  }
   if (!r.role.empty()) {
     r.role.clear();
     note(robot, TraceEvent::Kind::Role, "");

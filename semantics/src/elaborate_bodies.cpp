@@ -309,7 +309,8 @@ void Elaborator::lowerGroupBlock(const ast::Stmt& s, model::Stmt& out, Index tea
     const model::CompositeService& sv = m_.services[service];
     if (const strategy::LeaderSelection* ls = m_.strategy.leaderSelection(t.name, sv.plan, sv.name)) {
       block.leader = {ls->algorithm, ls->heartbeatMillis, ls->timeoutMillis, true,
-                      ls->reelection == strategy::LeaderSelection::Reelection::Timeout};
+                      ls->reelection == strategy::LeaderSelection::Reelection::Timeout,
+                      ls->onModeChange == strategy::LeaderSelection::OnModeChange::Keep};
     } else {
       SourceRange at = block.arms.front().at;
       for (const model::GroupArm& arm : block.arms) {

@@ -298,6 +298,13 @@ std::vector<Index> Translator::modesRunning(Index team, std::size_t planIndex, I
   return modes;
 }
 
+bool Translator::keepsLeadership(Index block, Index mode) const {
+  const model::GroupBlock& b = m_.groupBlocks[block];
+  if (!b.leader.keptAcrossModes) return false;
+  const std::vector<model::PlanSetting>& settings = m_.modes[mode].settings;
+  return std::any_of(settings.begin(), settings.end(), [&](const model::PlanSetting& s) { return s.service == b.service; });
+}
+
 std::vector<ir::Assignment> Translator::enterMode(Index robot, Index mode) const {
   Index team = m_.robots[robot].team;
   std::vector<ir::Assignment> out;
@@ -316,8 +323,12 @@ std::vector<ir::Assignment> Translator::enterMode(Index robot, Index mode) const
     out.push_back({*v.pc[p], Expr::constant(static_cast<std::int32_t>(entry))});
   }
   // Its services restart, so it has left every group block: a leader stops leading (and sending
-  // heartbeats), and the others may take over.
-  for (const auto& [block, leads] : v.leads) out.push_back({leads, Expr::constant(0)});
+  // heartbeats), and the others may take over; unless the strategy keeps the leadership across
+  // modes and the new mode runs the block's service again, whose block the leader then re-enters
+  // as leader (its `leads` passes the election at the formation point).
+  for (const auto& [block, leads] : v.leads) {
+    if (!keepsLeadership(block, mode)) out.push_back({leads, Expr::constant(0)});
+  }
   return out;
 }
 

@@ -52,6 +52,8 @@ std::vector<Input> inputs() {
   out.push_back({"liveness_jammed_recall_reliable", "specs/defects/liveness/jammed_recall.semo --strategy specs/defects/liveness/jammed_recall_reliable.xml"});
   out.push_back({"liveness_stuck_gossip_reliable", "specs/defects/liveness/stuck_gossip.semo --strategy specs/defects/liveness/stuck_gossip_reliable.xml"});
   out.push_back({"liveness_orphaned_relay_formation", "specs/defects/liveness/orphaned_relay.semo --strategy specs/defects/liveness/orphaned_relay_formation.xml"});
+  out.push_back({"liveness_handed_watch_release", "specs/defects/liveness/handed_watch.semo --strategy specs/defects/liveness/handed_watch_release.xml"});
+  out.push_back({"liveness_handed_watch_keep", "specs/defects/liveness/handed_watch.semo --strategy specs/defects/liveness/handed_watch_keep.xml"});
   out.push_back({"liveness_orphaned_relay_timeout", "specs/defects/liveness/orphaned_relay.semo --strategy specs/defects/liveness/orphaned_relay_timeout.xml"});
   for (const auto& entry : fs::directory_iterator(SEMO_SOURCE_DIR "/tests/e2e/ir")) {
     if (entry.path().extension() != ".ir") continue;

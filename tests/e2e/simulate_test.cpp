@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <fstream>
 #include <regex>
 #include <string>
 
@@ -48,6 +49,23 @@ TEST(SimulateScouting, ReportsReachTheMasterAfterTheTakeover) {
   EXPECT_LE(takeover - crash, 2.5);
   EXPECT_GE(reportsAfter, 2) << "the new leader's reports reach the master";
   EXPECT_TRUE(trace["summary"]["completed"].get<bool>());
+}
+
+// A dark spell from 8 s to 20 s: the Burger leading the light watch sends the team into hiding and
+// back, and keeps the watch through both mode changes (on-mode-change="keep" in the strategy). The
+// conformance check compares the runtime's `leads` with the model's after every step, so a runtime
+// that dropped the leadership at the mode change, as the model no longer does, would fail here.
+TEST(SimulateScouting, TheLightWatchStaysWithItsLeaderThroughADarkSpell) {
+  const fs::path dir = workDir("scouting_dark_spell");
+  nlohmann::json world = nlohmann::json::parse(slurp(fs::path(SEMO_SOURCE_DIR) / "specs/examples/scouting/scouting.world.json"));
+  world["values"]["SlaveTeam.lightness"] = {{"schedule", {{0, 650}, {8, 120}, {20, 650}}}};
+  std::ofstream(dir / "dark.world.json") << world.dump(1);
+  CliRun r = verify("simulate " + kScouting + " --world '" + (dir / "dark.world.json").string() + "' --duration 40s --check-conformance", dir);
+  ASSERT_EQ(r.exit, 0) << r.out << r.err;
+  EXPECT_TRUE(std::regex_search(r.out, std::regex("burger_[01]: HIDE_MODE at (8|9)\\.[0-9]+ s"))) << r.out;
+  EXPECT_TRUE(std::regex_search(r.out, std::regex("burger_[01]: SEARCH_MODE at 2[0-9]\\.[0-9]+ s"))) << r.out;
+  EXPECT_TRUE(std::regex_search(r.out, std::regex("leader of SlaveTeam\\.Light\\.WatchLight#[0-9]+: burger_[01] at [0-9.]+ s\n"))) << r.out;
+  EXPECT_NE(r.out.find("every one a step the model allows"), std::string::npos) << r.out;
 }
 
 // The paper's second experiment: one robot sees the obstacle; knowledge sharing stops them all.

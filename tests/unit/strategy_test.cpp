@@ -135,5 +135,15 @@ TEST(Strategy, ReelectionOnTimeoutByDefaultOrAtFormation) {
   EXPECT_EQ(r->strategy.leaderSelection("T", "P", "F")->reelection, strategy::LeaderSelection::Reelection::Formation);
 }
 
+TEST(Strategy, LeadershipReleasedOnAModeChangeByDefaultOrKept) {
+  auto r = read(R"(<strategy><leader-selection service="T.P.S"/><leader-selection service="T.P.K" on-mode-change="keep"/></strategy>)");
+  ASSERT_FALSE(r->diags.hasErrors());
+  EXPECT_EQ(r->strategy.leaderSelection("T", "P", "S")->onModeChange, strategy::LeaderSelection::OnModeChange::Release);
+  EXPECT_EQ(r->strategy.leaderSelection("T", "P", "K")->onModeChange, strategy::LeaderSelection::OnModeChange::Keep);
+  auto bad = read(R"(<strategy><leader-selection service="T.P.S" on-mode-change="stay"/></strategy>)");
+  ASSERT_TRUE(bad->diags.hasErrors());
+  EXPECT_NE(bad->diags.diagnostics().front().message.find("on-mode-change must be 'release' or 'keep', not 'stay'"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace semo

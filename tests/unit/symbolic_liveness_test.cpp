@@ -158,6 +158,31 @@ TEST(SymbolicLiveness, AHuntForQuietLoopsFindsOnlyRealViolations) {
   EXPECT_LE(found, violations);
 }
 
+// A hunt that finds no quiet loop goes on to every settling world (SymbolicLimits::thenSettled).
+// Asked of the whole model (nothing left out), it is then the proof's search: it finds a violation
+// exactly where the explicit search does, including those whose loop needs the world's help,
+// and each lasso passes the independent check.
+TEST(SymbolicLiveness, AHuntThatGoesOnToTheSettlingWorldsFindsEveryViolation) {
+  int found = 0, sensing = 0;
+  forEachRandomProperty(test::randomModels(300), [&](const ir::Model& m, const LivenessResult& reference, std::size_t k) {
+    detail::SymbolicLimits hunt;
+    hunt.quietLoop = true;
+    hunt.thenSettled = true;
+    const SymbolicOutcome s = detail::decideSymbolically(m, k, hunt);
+    ASSERT_NE(s.kind, SymbolicOutcome::Kind::GaveUp) << s.why;
+    EXPECT_EQ(s.kind == SymbolicOutcome::Kind::Violation, reference.properties[k].verdict == Verdict::Violated);
+    if (s.kind != SymbolicOutcome::Kind::Violation) return;
+    ++found;
+    ASSERT_TRUE(s.lasso.has_value());
+    EXPECT_TRUE(checkLasso(m, *s.lasso, m.properties[k]).counterexample());
+    bool senses = false;
+    for (std::size_t i = s.lasso->loopStart; i < s.lasso->steps.size(); ++i) senses = senses || !m.rules[s.lasso->steps[i].rule].sensed.empty();
+    if (senses) ++sensing;
+  });
+  EXPECT_GT(found, test::atLeast(50));
+  EXPECT_GT(sensing, 0);  // some violations were found only on a settling world
+}
+
 // The whole hunt, as checkSliced runs it after the slices: the cone, the quiet loop, and the
 // rebuild on the model. A violation it reports is the explicit search's verdict, with a lasso that
 // passes the independent check; what it does not find, it leaves unknown with the reason.

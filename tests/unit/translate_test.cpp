@@ -309,6 +309,49 @@ TEST(Translate, ALeaderThatLeavesItsBlockStopsLeading) {
   EXPECT_EQ(exits, 1u);
 }
 
+TEST(Translate, ALeaderKeptAcrossModesGoesOnLeadingWhereItsServiceRunsAgain) {
+  // Scouting's strategy keeps the light watch's leader across modes (on-mode-change="keep"): a
+  // Burger entering SEARCH_MODE or HIDE_MODE, which both set WatchLight, keeps its `leads`; one
+  // entering a mode without the Light plan (RETURN_MODE, RC_MODE, AUTODRIVE_MODE) or crashing
+  // stops leading.
+  SourceManager sources;
+  DiagnosticEngine diags(sources);
+  auto m = loadMission({SEMO_SOURCE_DIR "/specs/examples/scouting/scouting.semo",
+                        SEMO_SOURCE_DIR "/specs/examples/scouting/strategy.xml", std::nullopt}, sources, diags);
+  ASSERT_TRUE(m.has_value());
+  auto model = translate(*m, {}, sources, diags);
+  ASSERT_TRUE(model.has_value());
+  std::optional<ir::VarId> leads, mode;
+  for (ir::VarId v = 0; v < model->variables.size(); ++v) {
+    if (model->variables[v].name.rfind("burger_0.leads.WatchLight", 0) == 0) leads = v;
+    if (model->variables[v].name == "burger_0.mode") mode = v;
+  }
+  ASSERT_TRUE(leads.has_value() && mode.has_value());
+  const std::vector<std::string>& modes = model->variables[*mode].valueNames;
+  std::size_t kept = 0, released = 0;
+  for (const ir::Rule& r : model->rules) {
+    for (const ir::Branch& b : r.branches) {
+      std::optional<std::int32_t> target;
+      bool assignsLeads = false;
+      for (const ir::Assignment& a : b.assignments) {
+        if (a.var == *mode && a.value.op == ir::Op::Const) target = a.value.value;
+        if (a.var == *leads) assignsLeads = true;
+      }
+      if (!target || r.label.find("leads the group") != std::string::npos) continue;
+      const std::string& name = modes.at(static_cast<std::size_t>(*target));
+      if (name == "SEARCH_MODE" || name == "HIDE_MODE") {
+        ++kept;
+        EXPECT_FALSE(assignsLeads) << r.name << ": " << r.label;
+      } else {
+        ++released;
+        EXPECT_TRUE(assignsLeads) << r.name << ": " << r.label;
+      }
+    }
+  }
+  EXPECT_GE(kept, 3u);  // into SEARCH_MODE after the approach, and both ways by its own light events
+  EXPECT_GE(released, 2u);
+}
+
 TEST(Translate, ALeaderIsElectedOnlyAmongTheRobotsFormingTheBlock) {
   // scout_0 reaches the relay block while scout_1 still drives. Electing scout_1 then (the best
   // candidate, but not there) made a leader that its own mode change cleared a moment later;

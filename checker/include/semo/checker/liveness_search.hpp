@@ -33,8 +33,8 @@ struct LivenessMethod {
   // (symbolic_liveness.hpp); symbolicStates counts the reachable product states of the slices so searched.
   bool symbolic = false;
   double symbolicStates = 0;
-  // Violated: the lasso was found by the hunt on the property's cone, without crashes, for a loop
-  // that senses nothing (symbolically), after no slice decided; keptVariables is the cone's.
+  // Violated: the lasso was found by the hunt on the property's cone, without crashes
+  // (symbolically), after no slice decided; keptVariables is the cone's.
   bool hunted = false;
   // Violated: the lasso was found by random walks on the whole model (the walks-th), after no
   // slice decided.

@@ -113,6 +113,11 @@ struct LeaderSelection {
   // heartbeats (`timeout`), or only when the group forms again (`formation`, the paper's scheme).
   enum class Reelection { Timeout, Formation };
   Reelection reelection = Reelection::Timeout;
+  // What a leader does with its leadership when its mode changes to one that runs the same
+  // service again (its services restart either way): gives it up, so the others may take over
+  // (`release`), or goes on leading once it is back in the block (`keep`).
+  enum class OnModeChange { Release, Keep };
+  OnModeChange onModeChange = OnModeChange::Release;
   std::int64_t heartbeatMillis = 1000;
   std::int64_t timeoutMillis = 3000;
   SourceRange at;

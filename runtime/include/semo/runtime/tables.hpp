@@ -159,6 +159,7 @@ struct ModeTable {
   std::vector<Id> entry;  // per plan of the team: the program counter the mode starts it at (0: runs nothing)
   std::vector<std::pair<Id, Id>> catches;  // (event, target mode)
   Id defaultTarget = kNone;                // `default: mode = M` once every plan is done
+  std::vector<Id> keepsLeaders;  // LeaderBlockTables whose leader goes on leading on entering it (on-mode-change="keep")
   friend bool operator==(const ModeTable&, const ModeTable&) = default;
 };
 

@@ -97,6 +97,7 @@ struct LeaderConfig {
   std::int64_t timeoutMillis = 3000;
   bool fromStrategy = false;
   bool detectsFailures = true;  // false: a new leader only when the group forms (reelection="formation")
+  bool keptAcrossModes = false;  // on-mode-change="keep": a leader whose new mode runs the service goes on leading
 };
 
 struct GroupBlock {
