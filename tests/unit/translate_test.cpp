@@ -32,6 +32,14 @@ std::unique_ptr<Translated> translateText(const std::string& mission, const std:
   return t;
 }
 
+std::unique_ptr<Translated> translateScouting() {
+  auto t = std::make_unique<Translated>();
+  auto m = loadMission({SEMO_SOURCE_DIR "/specs/examples/scouting/scouting.semo", SEMO_SOURCE_DIR "/specs/examples/scouting/strategy.xml", std::nullopt},
+                       t->sources, t->diags);
+  if (m) t->model = translate(*m, {}, t->sources, t->diags);
+  return t;
+}
+
 const checker::PropertyResult* find(const checker::SearchResult& r, const std::string& prefix) {
   for (const checker::PropertyResult& p : r.properties) {
     if (p.name.rfind(prefix, 0) == 0) return &p;
@@ -265,12 +273,8 @@ TEST(Translate, TextFormRoundTripsAndExploresTheSameStates) {
 TEST(Translate, ALeaderThatLeavesItsBlockStopsLeading) {
   // Scouting: the ev3s elect a reporting leader (ReportPapers); a robot whose mode changes, or
   // that leaves the block, no longer leads (no more heartbeats), so the other can take over.
-  SourceManager sources;
-  DiagnosticEngine diags(sources);
-  auto m = loadMission({SEMO_SOURCE_DIR "/specs/examples/scouting/scouting.semo",
-                        SEMO_SOURCE_DIR "/specs/examples/scouting/strategy.xml", std::nullopt}, sources, diags);
-  ASSERT_TRUE(m.has_value());
-  auto model = translate(*m, {}, sources, diags);
+  const auto scouting = translateScouting();
+  const std::optional<ir::Model>& model = scouting->model;
   ASSERT_TRUE(model.has_value());
   std::optional<ir::VarId> leads;
   for (ir::VarId v = 0; v < model->variables.size(); ++v) {
@@ -314,12 +318,8 @@ TEST(Translate, ALeaderKeptAcrossModesGoesOnLeadingWhereItsServiceRunsAgain) {
   // Burger entering SEARCH_MODE or HIDE_MODE, which both set WatchLight, keeps its `leads`; one
   // entering a mode without the Light plan (RETURN_MODE, RC_MODE, AUTODRIVE_MODE) or crashing
   // stops leading.
-  SourceManager sources;
-  DiagnosticEngine diags(sources);
-  auto m = loadMission({SEMO_SOURCE_DIR "/specs/examples/scouting/scouting.semo",
-                        SEMO_SOURCE_DIR "/specs/examples/scouting/strategy.xml", std::nullopt}, sources, diags);
-  ASSERT_TRUE(m.has_value());
-  auto model = translate(*m, {}, sources, diags);
+  const auto scouting = translateScouting();
+  const std::optional<ir::Model>& model = scouting->model;
   ASSERT_TRUE(model.has_value());
   std::optional<ir::VarId> leads, mode;
   for (ir::VarId v = 0; v < model->variables.size(); ++v) {
