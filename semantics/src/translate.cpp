@@ -298,7 +298,7 @@ std::vector<Index> Translator::modesRunning(Index team, std::size_t planIndex, I
   return modes;
 }
 
-bool Translator::keepsLeadership(Index block, Index mode) const {
+bool Translator::keepsLeadership(Index block, Index mode) const {  // on-mode-change="keep", the service set again
   const model::GroupBlock& b = m_.groupBlocks[block];
   if (!b.leader.keptAcrossModes) return false;
   const std::vector<model::PlanSetting>& settings = m_.modes[mode].settings;
@@ -323,9 +323,8 @@ std::vector<ir::Assignment> Translator::enterMode(Index robot, Index mode) const
     out.push_back({*v.pc[p], Expr::constant(static_cast<std::int32_t>(entry))});
   }
   // Its services restart, so it has left every group block: a leader stops leading (and sending
-  // heartbeats), and the others may take over; unless the strategy keeps the leadership across
-  // modes and the new mode runs the block's service again, whose block the leader then re-enters
-  // as leader (its `leads` passes the election at the formation point).
+  // heartbeats) and the others may take over, unless it keeps the leadership (keepsLeadership):
+  // then its `leads` passes the election when it is back at the formation point.
   for (const auto& [block, leads] : v.leads) {
     if (!keepsLeadership(block, mode)) out.push_back({leads, Expr::constant(0)});
   }
