@@ -189,14 +189,9 @@ void Projector::groupBlocks() {
       lb.heartbeatRule.assign(std::size_t{1} << std::min<std::size_t>(lb.candidates.size(), 16), kNone);
       leaderIndex_[b] = static_cast<Id>(out_.leaderBlocks.size());
       out.leader = leaderIndex_[b];
-      if (block.leader.keptAcrossModes) {  // the translation's enterMode keeps these `leads` too
-        const std::vector<model::Index>& modes = m_.teams[block.team].modes;
-        for (std::size_t k = 0; k < modes.size(); ++k) {
-          const std::vector<model::PlanSetting>& settings = m_.modes[modes[k]].settings;
-          if (std::any_of(settings.begin(), settings.end(), [&](const model::PlanSetting& s) { return s.service == block.service; })) {
-            out_.teams[block.team].modes[k].keepsLeaders.push_back(leaderIndex_[b]);
-          }
-        }
+      const std::vector<model::Index>& modes = m_.teams[block.team].modes;
+      for (std::size_t k = 0; k < modes.size(); ++k) {  // as the translation's enterMode keeps `leads`
+        if (m_.keepsLeadership(b, modes[k])) out_.teams[block.team].modes[k].keepsLeaders.push_back(leaderIndex_[b]);
       }
       out_.leaderBlocks.push_back(std::move(lb));
     }

@@ -28,6 +28,13 @@ std::int64_t largestMinimum(const MissionModel& m, const std::vector<Stmt>& body
 
 std::int64_t MissionModel::armDemand(const GroupArm& arm) const { return largestMinimum(*this, arm.body, 0); }
 
+bool MissionModel::keepsLeadership(Index block, Index mode) const {
+  const GroupBlock& b = groupBlocks.at(block);
+  if (!b.leader.keptAcrossModes) return false;
+  const std::vector<PlanSetting>& settings = modes.at(mode).settings;
+  return std::any_of(settings.begin(), settings.end(), [&](const PlanSetting& s) { return s.service == b.service; });
+}
+
 Index MissionModel::findTeam(const std::string& name) const {
   for (Index i = 0; i < teams.size(); ++i) {
     if (teams[i].name == name) return i;

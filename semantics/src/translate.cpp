@@ -298,13 +298,6 @@ std::vector<Index> Translator::modesRunning(Index team, std::size_t planIndex, I
   return modes;
 }
 
-bool Translator::keepsLeadership(Index block, Index mode) const {  // on-mode-change="keep", the service set again
-  const model::GroupBlock& b = m_.groupBlocks[block];
-  if (!b.leader.keptAcrossModes) return false;
-  const std::vector<model::PlanSetting>& settings = m_.modes[mode].settings;
-  return std::any_of(settings.begin(), settings.end(), [&](const model::PlanSetting& s) { return s.service == b.service; });
-}
-
 std::vector<ir::Assignment> Translator::enterMode(Index robot, Index mode) const {
   Index team = m_.robots[robot].team;
   std::vector<ir::Assignment> out;
@@ -323,10 +316,10 @@ std::vector<ir::Assignment> Translator::enterMode(Index robot, Index mode) const
     out.push_back({*v.pc[p], Expr::constant(static_cast<std::int32_t>(entry))});
   }
   // Its services restart, so it has left every group block: a leader stops leading (and sending
-  // heartbeats) and the others may take over, unless it keeps the leadership (keepsLeadership):
+  // heartbeats) and the others may take over, unless it keeps the leadership (MissionModel::keepsLeadership):
   // then its `leads` passes the election when it is back at the formation point.
   for (const auto& [block, leads] : v.leads) {
-    if (!keepsLeadership(block, mode)) out.push_back({leads, Expr::constant(0)});
+    if (!m_.keepsLeadership(block, mode)) out.push_back({leads, Expr::constant(0)});
   }
   return out;
 }

@@ -115,8 +115,6 @@ class Translator {
   [[nodiscard]] std::optional<Expr> operand(Index robot, const model::Expr& e) const;
   [[nodiscard]] std::int32_t symbolValue(Index topic, const model::Expr& e) const;
   [[nodiscard]] std::vector<ir::Assignment> enterMode(Index robot, Index mode) const;
-  // Whether a leader of the block goes on leading when it enters the mode (on-mode-change="keep").
-  [[nodiscard]] bool keepsLeadership(Index block, Index mode) const;
   [[nodiscard]] std::vector<Index> modesRunning(Index team, std::size_t planIndex, Index service) const;
   [[nodiscard]] ir::Origin origin(const SourceRange& r, std::string construct) const;
   [[nodiscard]] static std::string constructOf(const Instr& in);

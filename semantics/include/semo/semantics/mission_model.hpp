@@ -236,6 +236,10 @@ struct MissionModel {
   // of the group services its body calls (through composite services too). What group formation
   // means, for the translation's invariants and for the crash-set analysis alike.
   [[nodiscard]] std::int64_t armDemand(const GroupArm& arm) const;
+  // Whether a leader of the leader block goes on leading when its robot enters the mode: the
+  // strategy keeps the leadership across modes (on-mode-change="keep") and the mode sets the
+  // block's service again. The translation and the runtime's tables both follow it.
+  [[nodiscard]] bool keepsLeadership(Index block, Index mode) const;
 };
 
 }  // namespace semo::model
