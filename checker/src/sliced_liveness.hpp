@@ -27,6 +27,9 @@ struct SlicedOutcome {
   // The violation was found by the hunt on the property's cone (sliced_liveness.cpp), after no
   // slice decided; keptVariables is then the cone's.
   bool hunted = false;
+  // Decided on the property's exact cone, crashes and discoveries included, every settling world
+  // searched with its loops narrowed (sliced_liveness.cpp, proveOnCone); keptVariables is the cone's.
+  bool onCone = false;
   double symbolicSeconds = 0;     // spent in symbolic searches (slices and hunt)
   // The violation was found by random walks on the whole model (lasso_walks.hpp), after no slice
   // decided, in the `walks`-th walk.
@@ -44,6 +47,13 @@ struct SlicedOutcome {
 void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLimits& limits, SlicedOutcome& out,
                 const ControlFacts* facts = nullptr, double symbolicSeconds = LivenessOptions{}.symbolicSeconds);
 
+// The search of the property's exact cone of influence, crashes and discoveries included, on every
+// settling world, each world's loops narrowed to the rules that can recur (recurring_rules.hpp),
+// within `seconds` of processor time: a proof or a lasso rebuilt on the whole model becomes
+// `out`'s verdict (onCone); otherwise out.why says how it ended.
+void proveOnCone(const CompiledModel& full, const ControlFacts& facts, std::size_t property, const SearchLimits& limits,
+                 SlicedOutcome& out, double seconds);
+
 // Random walks on the whole model for a fair violation (lasso_walks.hpp): a lasso found becomes
 // `out`'s verdict (walked); otherwise out.why says how many walks found none. Never a proof.
 void walkForLasso(const CompiledModel& full, std::size_t property, const SearchLimits& limits, std::uint64_t seed, SlicedOutcome& out);
@@ -51,9 +61,10 @@ void walkForLasso(const CompiledModel& full, std::size_t property, const SearchL
 // `facts` are the model's control facts (slicing.hpp), computed once for all its properties. When
 // no slice decides, random walks with `walkSeed` hunt a violation (none: no walks); then, with
 // `symbolic`, the hunt on the cone. The symbolic searches share `symbolicSeconds` of processor
-// time (LivenessOptions::symbolicSeconds).
+// time (LivenessOptions::symbolicSeconds). Last, with `coneSeconds` > 0, the search of the exact
+// cone (LivenessOptions::coneSeconds), which can prove.
 SlicedOutcome checkSliced(const CompiledModel& full, const ControlFacts& facts, std::size_t property, const SearchLimits& limits,
                           std::uint64_t sliceStates, bool symbolic, std::optional<std::uint64_t> walkSeed = 1,
-                          double symbolicSeconds = LivenessOptions{}.symbolicSeconds);
+                          double symbolicSeconds = LivenessOptions{}.symbolicSeconds, double coneSeconds = 0);
 
 }  // namespace semo::checker::detail

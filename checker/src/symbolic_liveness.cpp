@@ -8,11 +8,14 @@
 #include <mutex>
 #include <optional>
 #include <stdexcept>
+#include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "semo/checker/buchi.hpp"
 #include "semo/checker/fairness.hpp"
 #include "semo/checker/trace.hpp"
+#include "recurring_rules.hpp"
 #include "symbolic_apart.hpp"
 #include "symbolic_product.hpp"
 
@@ -36,21 +39,42 @@ namespace {
 // the search splits in two (the loop decides it one way, or the other), each from the states found,
 // as the explicit engine splits a strongly connected component.
 constexpr std::uint32_t kMaxWorlds = 512;
+// SymbolicLimits::everyWorld searches each of the 2^points worlds only up to this many points.
+constexpr std::size_t kEveryWorldPoints = 6;
 
 class SettledSearch {
  public:
-  SettledSearch(SymbolicProduct& product, const Sensing& sensing, std::size_t rules)
-      : product_(product), sensing_(sensing), rules_(rules) {}
+  SettledSearch(SymbolicProduct& product, const ir::Model& model, const Sensing& sensing, const LoopNarrowing* narrowing)
+      : product_(product), sensing_(sensing), rules_(model.rules.size()), narrowing_(narrowing) {
+    std::unordered_map<std::string, std::uint32_t> ids;  // numbered as Sensing::in numbers them
+    for (const ir::Rule& rule : model.rules) {
+      for (const ir::SensedOutcome& o : rule.sensed) ids.try_emplace(o.point, static_cast<std::uint32_t>(ids.size()));
+    }
+    pointOf_ = std::move(ids);
+  }
 
   bool violated(const bdd& reach, bool settled) {
     std::vector<std::int8_t> world(settled ? sensing_.points : 0, -1);
     return search(reach, world);
+  }
+  // Every settling world in turn, each sensed condition decided one way or the other: 2^points
+  // searches, each with its loops narrowed the most (recurring_rules.hpp), where the splitting
+  // above starts from the world that decides nothing, whose fixpoint on a large model is the
+  // dearest of all (scouting's cone: measured in checker/README.md).
+  bool violatedOnEveryWorld(const bdd& reach) {
+    std::vector<std::int8_t> world(sensing_.points, 0);
+    for (std::uint64_t w = 0; w < (std::uint64_t{1} << world.size()); ++w) {
+      for (std::size_t p = 0; p < world.size(); ++p) world[p] = static_cast<std::int8_t>((w >> p) & 1);
+      if (search(reach, world)) return true;
+    }
+    return false;
   }
   // Whether a fair violation has a loop that senses nothing (settled whatever the world does):
   // one search, no splitting; a hunt's question, not a proof's.
   bool violatedQuietly(const bdd& reach) {
     std::vector<char> allowed(rules_, 0);
     for (std::uint32_t r = 0; r < rules_; ++r) allowed[r] = sensing_.of[r].empty() ? 1 : 0;
+    narrow(allowed, [](const ir::SensedOutcome&) { return false; });
     ++worlds_;
     found_ = product_.fairStates(reach, allowed);
     foundAllowed_ = std::move(allowed);
@@ -66,6 +90,10 @@ class SettledSearch {
     if (++worlds_ > kMaxWorlds) throw GiveUp("more than 512 ways the world may settle had to be searched");
     std::vector<char> allowed(rules_, 1);
     for (std::uint32_t r = 0; r < rules_; ++r) allowed[r] = world.empty() || sensing_.agrees(r, world) ? 1 : 0;
+    narrow(allowed, [&](const ir::SensedOutcome& o) {
+      const auto p = pointOf_.find(o.point);
+      return world.empty() || p == pointOf_.end() || world[p->second] < 0 || world[p->second] == static_cast<std::int8_t>(o.holds);
+    });
     const bdd z = product_.fairStates(from, allowed);
     if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) std::fprintf(stderr, "[symbolic] world %u: %.0f fair states\n", worlds_, product_.count(z));
     if (z == bddfalse) return false;
@@ -93,9 +121,23 @@ class SettledSearch {
     return true;  // no step inside decides a condition both ways
   }
 
+  // Leaves out of `allowed` the rules the model the searched one was cut from cannot repeat on a
+  // loop that senses as `senses` lets it.
+  void narrow(std::vector<char>& allowed, const std::function<bool(const ir::SensedOutcome&)>& senses) const {
+    if (narrowing_ == nullptr) return;
+    const std::vector<char> recur = narrowing_->loopRules(senses);
+    std::size_t left = 0;
+    for (std::uint32_t r = 0; r < rules_; ++r) {
+      if (allowed[r] != 0 && recur[r] == 0) allowed[r] = 0, ++left;
+    }
+    if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) std::fprintf(stderr, "[symbolic] %zu rules cannot recur on this world's loops\n", left);
+  }
+
   SymbolicProduct& product_;
   const Sensing& sensing_;
   const std::size_t rules_;
+  const LoopNarrowing* narrowing_;
+  std::unordered_map<std::string, std::uint32_t> pointOf_;
   std::uint32_t worlds_ = 0;
   bdd found_;
   std::vector<char> foundAllowed_;
@@ -296,8 +338,11 @@ SymbolicOutcome searchHoldingPackage(const ir::Model& model, std::size_t propert
     }
     // A step of a slice (or of the cone) that would leave a declared range is no step: the
     // relation has no such outcome (LivenessOptions::slice says why that is sound).
-    SettledSearch search(product, sensing, model.rules.size());
-    bool violated = limits.quietLoop ? search.violatedQuietly(reach) : search.violated(reach, prop.settled);
+    SettledSearch search(product, model, sensing, limits.narrowing);
+    const bool everyWorld = limits.everyWorld && prop.settled && sensing.points <= kEveryWorldPoints;
+    bool violated = limits.quietLoop ? search.violatedQuietly(reach)
+                    : everyWorld     ? search.violatedOnEveryWorld(reach)
+                                     : search.violated(reach, prop.settled);
     // A hunt with no quiet loop goes on to loops that sense, one settling world at a time, with
     // the time it has left: the dearer search, and the one a violation needs when the loop keeps
     // reading a sensor (two robots that settle on different readings).

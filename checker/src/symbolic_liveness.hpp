@@ -17,6 +17,8 @@
 
 namespace semo::checker::detail {
 
+class LoopNarrowing;
+
 struct SymbolicLimits {
   std::uint64_t maxMemoryBytes = 2ull << 30;  // the decision diagrams' node table may not outgrow it
   double seconds = 120;                       // give up after this long
@@ -27,6 +29,12 @@ struct SymbolicLimits {
   // With quietLoop: when no quiet loop is found, search every settling world after all (still a
   // hunt: its "no violation" proves nothing about the rules a hunt leaves out).
   bool thenSettled = false;
+  // What the model the searched one was cut from can repeat (recurring_rules.hpp): a loop of
+  // each world takes only the rules it allows there. Null: every rule the world allows.
+  const LoopNarrowing* narrowing = nullptr;
+  // On a settling world: search each world with every sensed condition decided (up to six
+  // conditions, 64 worlds) instead of splitting from the world that decides nothing.
+  bool everyWorld = false;
   // Called about once a second: the product states reached (or still candidates for a fair
   // cycle), the round as the depth, the node table's bytes.
   std::function<void(const Progress&)> onProgress;

@@ -66,6 +66,11 @@ void explicitSafetyVerdicts(Report& out) {
 // states" or "on the whole model, 1204 product states".
 std::string livenessSearchText(const LivenessMethod& m, std::size_t variables) {
   const std::string states = std::to_string(m.states) + " product states";
+  if (m.sliced && m.onCone) {
+    return "symbolically (decision diagrams) on the property's exact cone of influence (" + std::to_string(m.keptVariables) + " of " +
+           std::to_string(variables) + " variables, crashes included), every settling world, " +
+           fmt::format("{:.0f}", m.symbolicStates) + " product states counted";
+  }
   if (m.sliced && m.symbolic) {
     return "symbolically (decision diagrams) on a slice of " + std::to_string(m.keptVariables) + " of " + std::to_string(variables) +
            " variables, " + fmt::format("{:.0f}", m.symbolicStates) + " product states counted, after " + states + " enumerated";
@@ -103,6 +108,10 @@ void livenessVerdicts(Report& out, const ir::Model& model) {
       if (searched && live.methods[k].walked) {
         v.coverage += "; found by random walks on the whole model (walk " + std::to_string(live.methods[k].walks) +
                       "), checked on it, after no slice decided";
+      }
+      if (searched && live.methods[k].onCone) {
+        v.coverage += "; found symbolically on the property's exact cone (" + std::to_string(live.methods[k].keptVariables) + " of " +
+                      std::to_string(model.variables.size()) + " variables), after no slice decided";
       }
       if (searched && live.methods[k].hunted) {
         v.coverage += "; found symbolically on the property's cone (" + std::to_string(live.methods[k].keptVariables) + " of " +

@@ -173,6 +173,7 @@ checker::VerifyOptions verifyOptions(const CheckOptions& options, ProgressLine* 
   v.liveness.walkSeed = options.walkSeed;
   v.liveness.sliceStates = options.sliceStates;
   v.liveness.symbolicSeconds = options.symbolicSeconds;
+  v.liveness.coneSeconds = options.coneSeconds;
   v.limits.threads = options.threads != 0 ? options.threads : checker::defaultThreads();
   v.safetyOnly = options.safetyOnly;
   v.smt.induction = v.smt.ic3 = !options.bmcOnly;

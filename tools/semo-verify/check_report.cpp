@@ -198,6 +198,10 @@ nlohmann::json reportJson(const checker::Report& r, const ir::Model& model, cons
           search["on"] = "random walks";
           search["walks"] = m.walks;
         }
+        if (m.onCone) {
+          search["on"] = "exact cone, symbolically";
+          search["symbolicProductStates"] = m.symbolicStates;
+        }
         if (m.hunted) {
           search["on"] = "cone without crashes, symbolically";
           search["symbolicProductStates"] = m.symbolicStates;

@@ -69,6 +69,7 @@ struct CheckOptions {
   std::uint64_t walkSeed = 1;   // LivenessOptions::walkSeed
   std::uint64_t sliceStates = 500'000;  // LivenessOptions::sliceStates
   double symbolicSeconds = checker::LivenessOptions{}.symbolicSeconds;
+  double coneSeconds = checker::LivenessOptions{}.coneSeconds;
   bool safetyOnly = false;
   unsigned threads = 0;  // 0: one per core
   std::uint64_t maxMemoryMiB = 8192;

@@ -112,6 +112,10 @@ int run(int argc, char** argv) {
                     "Processor time the symbolic searches of one LTL property may take, its slices and the hunt on its cone (default " +
                         std::to_string(static_cast<int>(check.symbolicSeconds)) + "; less ends an undecided property sooner)")
         ->check(CLI::Range(1.0, 86400.0));
+    cmd->add_option("--cone-seconds", check.coneSeconds,
+                    "Processor time for an LTL property the slices leave undecided: its exact cone of influence, crashes included, "
+                    "searched on every settling world (default 0: not tried; scouting's mode_agreement needs about 1,800)")
+        ->check(CLI::Range(0.0, 86400.0));
     cmd->add_option("--slice-states", check.sliceStates,
                     "Product states one slice of the model may take (default 500000; --max-states, if lower, bounds it too)")
         ->check(CLI::Range(std::uint64_t{1}, UINT64_MAX));

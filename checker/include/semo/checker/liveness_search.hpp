@@ -36,6 +36,9 @@ struct LivenessMethod {
   // Violated: the lasso was found by the hunt on the property's cone, without crashes
   // (symbolically), after no slice decided; keptVariables is the cone's.
   bool hunted = false;
+  // Decided on the property's exact cone of influence, crashes and discoveries included, every
+  // settling world searched symbolically (LivenessOptions::coneSeconds); keptVariables is the cone's.
+  bool onCone = false;
   // Violated: the lasso was found by random walks on the whole model (the walks-th), after no
   // slice decided.
   bool walked = false;
@@ -79,6 +82,12 @@ struct LivenessOptions {
   // preimages through clusters, 2026-11-28; it was 80 to 130 s, hence three minutes before), and an
   // undecided property ends twice as soon.
   double symbolicSeconds = 90;
+  // When the slices, the walks and the hunt leave a property undecided: the processor time for
+  // searching its exact cone of influence, crashes and discoveries included, on every settling
+  // world, each world's loops narrowed to the rules that can recur (sliced_liveness.cpp,
+  // proveOnCone). 0 (the default): not tried. It can prove what the slices cannot, at a price:
+  // scouting's mode_agreement took 1,724 s of it (checker/README.md).
+  double coneSeconds = 0;
   // When no slice decides, random walks on the whole model hunt a fair violation first
   // (lasso_walks.hpp; at most 10 s), before the symbolic hunt and the round-robin one.
   bool walks = true;
