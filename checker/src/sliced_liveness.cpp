@@ -192,6 +192,28 @@ void walkForLasso(const CompiledModel& full, std::size_t property, const SearchL
   out.why += "; " + r.why;
 }
 
+namespace {
+
+// A lasso of the cone (exact in its variables, not in every group's fairness), rebuilt on the
+// whole model as a slice's: then `out`'s verdict, with the cone's size and counts; else `why` says
+// why not.
+bool rebuiltOnModel(const CompiledModel& full, const Slice& cone, const SymbolicOutcome& r, const ir::Property& prop,
+                    SlicedOutcome& out, std::string& why) {
+  Concretizer concretizer(full, cone, *r.lasso, prop.settled);
+  Trace concrete;
+  if (!concretizer.run(concrete, prop)) {
+    why = "its lasso could not be rebuilt (" + concretizer.why() + ")";
+    return false;
+  }
+  out.property.verdict = Verdict::Violated;
+  out.property.counterexample = std::move(concrete);
+  out.keptVariables = cone.variables.size();
+  out.symbolicStates += r.reachable;
+  return true;
+}
+
+}  // namespace
+
 // Slices over-approximate, so their lassos may keep failing on the model while a real violation
 // hides among them. The hunt looks at the property's whole cone instead (exact), without the
 // crashes and environment steps no fairness asks for: first for a loop that senses nothing (settled
@@ -223,17 +245,10 @@ void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLim
   out.symbolicSeconds += r.seconds;
   std::string found;
   if (r.kind == SymbolicOutcome::Kind::Violation && r.lasso) {
-    Concretizer concretizer(full, cone, *r.lasso, prop.settled);
-    Trace concrete;
-    if (concretizer.run(concrete, prop)) {
-      out.property.verdict = Verdict::Violated;
-      out.property.counterexample = std::move(concrete);
+    if (rebuiltOnModel(full, cone, r, prop, out, found)) {
       out.hunted = true;
-      out.keptVariables = cone.variables.size();
-      out.symbolicStates += r.reachable;
       return;
     }
-    found = "its lasso could not be rebuilt (" + concretizer.why() + ")";
   } else {
     found = r.kind == SymbolicOutcome::Kind::NoViolation ? "no fair loop on any settling world" : "gave up (" + r.why + ")";
   }
@@ -272,17 +287,12 @@ void proveOnCone(const CompiledModel& full, const ControlFacts& facts, std::size
     return;
   }
   if (r.kind == SymbolicOutcome::Kind::Violation && r.lasso) {
-    Concretizer concretizer(full, cone, *r.lasso, prop.settled);
-    Trace concrete;
-    if (concretizer.run(concrete, prop)) {
-      out.property.verdict = Verdict::Violated;
-      out.property.counterexample = std::move(concrete);
+    std::string why;
+    if (rebuiltOnModel(full, cone, r, prop, out, why)) {
       out.onCone = true;
-      out.keptVariables = cone.variables.size();
-      out.symbolicStates = r.reachable;
       return;
     }
-    out.why += "; " + where + ": its lasso could not be rebuilt (" + concretizer.why() + ")";
+    out.why += "; " + where + ": " + why;
     return;
   }
   out.why += "; " + where + " (--cone-seconds " + std::to_string(static_cast<int>(seconds)) + "): gave up (" + r.why + ")";

@@ -41,6 +41,12 @@ rule b.hears_alarm @robot(b) @kind(delivery) @strongly_fair : b.alarm -> b.alarm
 property agree @settled : always eventually {b.mode == 0};
 )";
 
+LivenessResult explicitSearch(const ir::Model& m) {
+  LivenessOptions whole;
+  whole.slicing = false;
+  return checkLiveness(m, SearchLimits{}, whole);
+}
+
 std::vector<std::string> names(const ir::Model& m, const std::vector<char>& marks) {
   std::vector<std::string> out;
   for (std::size_t r = 0; r < marks.size(); ++r) {
@@ -88,9 +94,7 @@ TEST(RecurringRules, RandomModelsWithNarrowedLoopsGetTheExplicitVerdicts) {
     const std::string text = test::RandomModel(seed).text();
     SCOPED_TRACE("seed " + std::to_string(seed) + ":\n" + text);
     const ir::Model m = test::parseIr(text);
-    LivenessOptions whole;
-    whole.slicing = false;
-    const LivenessResult reference = checkLiveness(m, SearchLimits{}, whole);
+    const LivenessResult reference = explicitSearch(m);
     ASSERT_TRUE(reference.complete);
     const RecurringRules recurring(m);
     const std::vector<char> all(m.rules.size(), 1);
@@ -129,9 +133,7 @@ TEST(RecurringRules, TheExactConeDecidesAsTheExplicitSearchDoes) {
     const std::string text = test::RandomModel(seed).text();
     SCOPED_TRACE("seed " + std::to_string(seed) + ":\n" + text);
     const ir::Model m = test::parseIr(text);
-    LivenessOptions whole;
-    whole.slicing = false;
-    const LivenessResult reference = checkLiveness(m, SearchLimits{}, whole);
+    const LivenessResult reference = explicitSearch(m);
     const CompiledModel cm(m);
     const ControlFacts facts = controlFacts(m);
     for (std::size_t k = 0; k < m.properties.size(); ++k) {
