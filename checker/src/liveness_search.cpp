@@ -253,8 +253,13 @@ LivenessResult checkLiveness(const ir::Model& model, const SearchLimits& limits,
   // The phases of all workers are said as they come, but the counts are the first worker's: before
   // its counts, its own phase is said again if another worker's came since (a count of the swarm's
   // knowledge_convergence shown after "mode_agreement: proven" misled).
+  // Progress comes from the lowest-numbered worker still searching: one line to follow, and, once
+  // the others are done, the one left (scouting's mode_agreement searches its exact cone for half
+  // an hour after the rest have ended; its progress used to go unshown, worker 0 being done).
   std::mutex phaseLock;
-  std::string lastPhase, firstWorkersPhase;
+  std::string lastPhase;
+  std::vector<std::string> phaseOf(workers);
+  std::vector<char> busy(workers, 1);
   auto work = [&](std::size_t worker) {
     SearchLimits mine = limits;
     mine.maxMemoryBytes = limits.maxMemoryBytes / std::max<std::size_t>(1, workers);
@@ -262,19 +267,21 @@ LivenessResult checkLiveness(const ir::Model& model, const SearchLimits& limits,
       mine.onPhase = [&, worker](const std::string& what) {
         const std::lock_guard<std::mutex> hold(phaseLock);
         lastPhase = what;
-        if (worker == 0) firstWorkersPhase = what;
+        phaseOf[worker] = what;
         limits.onPhase(what);
       };
     }
-    if (worker != 0) {
-      mine.onProgress = nullptr;
-    } else if (limits.onProgress && limits.onPhase) {
-      mine.onProgress = [&](const Progress& p) {
+    mine.onProgress = nullptr;
+    if (limits.onProgress && limits.onPhase) {
+      mine.onProgress = [&, worker](const Progress& p) {
         {
           const std::lock_guard<std::mutex> hold(phaseLock);
-          if (lastPhase != firstWorkersPhase) {
-            lastPhase = firstWorkersPhase;
-            limits.onPhase(firstWorkersPhase);
+          for (std::size_t w = 0; w < worker; ++w) {
+            if (busy[w] != 0) return;
+          }
+          if (lastPhase != phaseOf[worker]) {
+            lastPhase = phaseOf[worker];
+            limits.onPhase(phaseOf[worker]);
           }
         }
         limits.onProgress(p);
@@ -291,6 +298,8 @@ LivenessResult checkLiveness(const ir::Model& model, const SearchLimits& limits,
                      " product states");
       }
     }
+    const std::lock_guard<std::mutex> hold(phaseLock);
+    busy[worker] = 0;
   };
   std::vector<std::thread> helpers;
   for (std::size_t w = 1; w < workers; ++w) helpers.emplace_back(work, w);
