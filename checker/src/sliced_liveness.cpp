@@ -266,7 +266,10 @@ void proveOnCone(const CompiledModel& full, const ControlFacts& facts, std::size
   const ir::Model& model = facts.model;
   const ir::Property& prop = model.properties.at(property);
   const Slice cone = sliceModel(model, property, coneOfInfluence(model, property, facts.neverFires), facts.neverFires);
-  if (cone.tooCoarse) return;
+  if (cone.tooCoarse) {
+    out.why += "; the exact cone: an update has too many values to enumerate";
+    return;
+  }
   const RecurringRules recurring(model, facts.neverFires);
   const LoopNarrowing narrowing(recurring, model, cone.rules);
   SymbolicLimits exact;
