@@ -21,13 +21,7 @@ namespace {
 
 std::vector<char> controlVariables(const ir::Model& model, std::int32_t robot) {
   std::vector<char> keep(model.variables.size(), 0);
-  for (ir::VarId v = 0; v < model.variables.size(); ++v) {
-    const ir::Variable& var = model.variables[v];
-    if (var.robot != robot) continue;
-    const std::string& n = var.name;
-    auto endsWith = [&](const std::string& suffix) { return n.size() >= suffix.size() && n.compare(n.size() - suffix.size(), suffix.size(), suffix) == 0; };
-    if (endsWith(".mode") || endsWith(".alive") || endsWith(".pc") || n.find(".pc.") != std::string::npos) keep[v] = 1;
-  }
+  for (ir::VarId v = 0; v < model.variables.size(); ++v) keep[v] = model.variables[v].robot == robot && isControlVariable(model.variables[v]);
   return keep;
 }
 
@@ -130,6 +124,12 @@ bool learnFromRobot(ControlFacts& facts, std::int32_t robot, std::uint64_t maxSt
 }
 
 }  // namespace
+
+bool isControlVariable(const ir::Variable& v) {
+  const std::string& n = v.name;
+  auto endsWith = [&](const std::string& suffix) { return n.size() >= suffix.size() && n.compare(n.size() - suffix.size(), suffix.size(), suffix) == 0; };
+  return v.robot != ir::kNoRobot && (endsWith(".mode") || endsWith(".alive") || endsWith(".pc") || n.find(".pc.") != std::string::npos);
+}
 
 ControlFacts controlFacts(const ir::Model& model, std::uint64_t maxStatesPerRobot) {
   ControlFacts facts;

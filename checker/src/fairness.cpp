@@ -35,6 +35,7 @@ Sensing Sensing::in(const ir::Model& model) {
     std::vector<Decision> decisions;
     for (const ir::SensedOutcome& o : rule.sensed) {
       auto [it, added] = ids.try_emplace(o.point, static_cast<std::uint32_t>(ids.size()));
+      if (added) s.names.push_back(o.point);
       decisions.push_back({it->second, o.holds});
     }
     s.of.push_back(std::move(decisions));

@@ -12,15 +12,6 @@ namespace semo::checker::detail {
 
 namespace {
 
-// A robot's control variables (its mode, program counters, `alive`): one part, because a mode
-// change sets every program counter and a plan's steps test the mode (a part of one counter alone
-// would see every counter value reach every other).
-bool controlVariable(const ir::Variable& v) {
-  const std::string& n = v.name;
-  auto endsWith = [&](const std::string& s) { return n.size() >= s.size() && n.compare(n.size() - s.size(), s.size(), s) == 0; };
-  return v.robot != ir::kNoRobot && (endsWith(".mode") || endsWith(".alive") || n.find(".pc.") != std::string::npos);
-}
-
 // The strongly connected components of a graph (Tarjan's, without recursion): component per node.
 std::vector<std::uint32_t> components(std::uint32_t nodes, const std::vector<std::vector<std::uint32_t>>& next) {
   constexpr std::uint32_t kNone = UINT32_MAX;
@@ -69,7 +60,9 @@ RecurringRules::RecurringRules(const ir::Model& model, const std::vector<char>& 
   std::vector<std::int32_t> controlOf(model.robots.size(), -1);
   for (ir::VarId v = 0; v < model.variables.size(); ++v) {
     const ir::Variable& var = model.variables[v];
-    if (controlVariable(var)) {
+    // A robot's control variables are one part: a mode change sets every program counter and a
+    // plan's steps test the mode (a part of one counter alone would see every value reach every other).
+    if (isControlVariable(var)) {
       std::int32_t& k = controlOf.at(static_cast<std::size_t>(var.robot));
       if (k < 0) k = static_cast<std::int32_t>(keeps.size()), keeps.emplace_back(model.variables.size(), 0);
       keeps[static_cast<std::size_t>(k)][v] = 1;

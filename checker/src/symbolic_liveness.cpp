@@ -44,13 +44,9 @@ constexpr std::size_t kEveryWorldPoints = 6;
 
 class SettledSearch {
  public:
-  SettledSearch(SymbolicProduct& product, const ir::Model& model, const Sensing& sensing, const LoopNarrowing* narrowing)
-      : product_(product), sensing_(sensing), rules_(model.rules.size()), narrowing_(narrowing) {
-    std::unordered_map<std::string, std::uint32_t> ids;  // numbered as Sensing::in numbers them
-    for (const ir::Rule& rule : model.rules) {
-      for (const ir::SensedOutcome& o : rule.sensed) ids.try_emplace(o.point, static_cast<std::uint32_t>(ids.size()));
-    }
-    pointOf_ = std::move(ids);
+  SettledSearch(SymbolicProduct& product, const Sensing& sensing, std::size_t rules, const LoopNarrowing* narrowing)
+      : product_(product), sensing_(sensing), rules_(rules), narrowing_(narrowing) {
+    for (std::uint32_t p = 0; p < sensing.names.size(); ++p) pointOf_.emplace(sensing.names[p], p);
   }
 
   bool violated(const bdd& reach, bool settled) {
@@ -338,7 +334,7 @@ SymbolicOutcome searchHoldingPackage(const ir::Model& model, std::size_t propert
     }
     // A step of a slice (or of the cone) that would leave a declared range is no step: the
     // relation has no such outcome (LivenessOptions::slice says why that is sound).
-    SettledSearch search(product, model, sensing, limits.narrowing);
+    SettledSearch search(product, sensing, model.rules.size(), limits.narrowing);
     const bool everyWorld = limits.everyWorld && prop.settled && sensing.points <= kEveryWorldPoints;
     bool violated = limits.quietLoop ? search.violatedQuietly(reach)
                     : everyWorld     ? search.violatedOnEveryWorld(reach)

@@ -4,6 +4,7 @@
 // some rule of it taken again and again; a strongly fair group (one strongly fair rule) enabled
 // again and again is taken again and again. A weakly fair rule without a group is a group alone.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "semo/semantics/ir.hpp"
@@ -30,6 +31,7 @@ struct Sensing {
   };
   std::vector<std::vector<Decision>> of;  // per rule
   std::size_t points = 0;
+  std::vector<std::string> names;         // per point: its name (ir::SensedOutcome::point)
 
   static Sensing in(const ir::Model& model);
   // Whether a rule's decisions agree with `allowed` (per point: -1 either way, 0 or 1 that way).

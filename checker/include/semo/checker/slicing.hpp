@@ -63,6 +63,9 @@ ir::Expr seenThrough(const ir::Expr& e, const Slice& slice, std::size_t modelVar
 // Leaving the dead rules out of slices and cones, and slicing `model`, changes no run and no
 // fairness (a rule never enabled is never owed a step; a guard changes only outside the reachable
 // states), but keeps out of the cone the variables only those rules and conjuncts read.
+// A robot's control variable: its mode, `alive`, or a program counter.
+bool isControlVariable(const ir::Variable& v);
+
 struct ControlFacts {
   std::vector<char> neverFires;   // per model rule
   ir::Model model;                // the model with the implied conjuncts dropped
