@@ -278,6 +278,7 @@ void proveOnCone(const CompiledModel& full, const ControlFacts& facts, std::size
   exact.onProgress = limits.onProgress;
   exact.narrowing = &narrowing;
   exact.everyWorld = true;
+  exact.worldsHelper = limits.threads >= 2;
   const SymbolicOutcome r = decideSymbolically(cone.model, 0, exact);
   out.symbolicSeconds += r.seconds;
   const std::string where = "the exact cone of " + std::to_string(cone.variables.size()) + " variables";

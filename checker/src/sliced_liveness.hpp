@@ -23,7 +23,7 @@ struct SlicedOutcome {
   // A slice too large to enumerate is searched symbolically (symbolic_liveness.hpp): when that
   // proves it, these say so.
   bool symbolic = false;
-  double symbolicStates = 0;      // the slice's reachable product states, counted
+  double symbolicStates = 0;      // the slice's product states searched, counted
   // The violation was found by the hunt on the property's cone (sliced_liveness.cpp), after no
   // slice decided; keptVariables is then the cone's.
   bool hunted = false;

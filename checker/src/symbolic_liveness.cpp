@@ -16,6 +16,7 @@
 #include "semo/checker/fairness.hpp"
 #include "semo/checker/trace.hpp"
 #include "recurring_rules.hpp"
+#include "shared_worlds.hpp"
 #include "symbolic_apart.hpp"
 #include "symbolic_product.hpp"
 
@@ -53,17 +54,37 @@ class SettledSearch {
     std::vector<std::int8_t> world(settled ? sensing_.points : 0, -1);
     return search(reach, world);
   }
-  // Every settling world in turn, each sensed condition decided one way or the other: 2^points
-  // searches, each with its loops narrowed the most (recurring_rules.hpp), where the splitting
-  // above starts from the world that decides nothing, whose fixpoint on a large model is the
-  // dearest of all (scouting's cone: measured in checker/README.md).
-  bool violatedOnEveryWorld(const bdd& reach) {
-    std::vector<std::int8_t> world(sensing_.points, 0);
-    for (std::uint64_t w = 0; w < (std::uint64_t{1} << world.size()); ++w) {
-      for (std::size_t p = 0; p < world.size(); ++p) world[p] = static_cast<std::int8_t>((w >> p) & 1);
-      if (search(reach, world)) return true;
+  // Every settling world, each sensed condition decided one way or the other: 2^points searches,
+  // each with its loops narrowed the most (recurring_rules.hpp), where the splitting above starts
+  // from the world that decides nothing, whose fixpoint on a large model is the dearest of all
+  // (scouting's cone: measured in checker/README.md). With `helper`, a forked process searches
+  // worlds beside this one (shared_worlds.hpp); the answer is the lowest world with fair states
+  // either way, and its fair states are this process's for the lasso.
+  bool violatedOnEveryWorld(const bdd& reach, bool helper) {
+    const std::size_t points = sensing_.points;
+    const std::uint64_t count = std::uint64_t{1} << points;
+    auto searchWorld = [&](std::uint64_t w) {
+      std::vector<std::int8_t> world(points, 0);
+      for (std::size_t p = 0; p < points; ++p) world[p] = static_cast<std::int8_t>((w >> p) & 1);
+      return search(reach, world);  // every point decided: no splitting, found_ set when true
+    };
+    std::optional<std::uint64_t> foundHere;
+    const auto left = product_.timeLeft();
+    const SharedWorlds shared = searchWorldsShared(
+        count,
+        [&](std::uint64_t w) {
+          const bool found = searchWorld(w);
+          if (found) foundHere = w;
+          return found;
+        },
+        helper, [&] { product_.continueInHelper(left); });
+    if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr && shared.helperStarted) {
+      std::fprintf(stderr, "[symbolic] %llu worlds searched by the helper process\n", static_cast<unsigned long long>(shared.byHelper));
     }
-    return false;
+    if (shared.violatedWorld && foundHere != shared.violatedWorld) searchWorld(*shared.violatedWorld);
+    // As one process counts them: up to the world with fair states, or all.
+    worlds_ = static_cast<std::uint32_t>(shared.violatedWorld ? *shared.violatedWorld + 1 : count);
+    return shared.violatedWorld.has_value();
   }
   // Whether a fair violation has a loop that senses nothing (settled whatever the world does):
   // one search, no splitting; a hunt's question, not a proof's.
@@ -286,6 +307,15 @@ class SymbolicLasso {
   std::vector<Move> moves_;
 };
 
+// Not under AddressSanitizer: g++ 12's does not hold its allocator's locks across a fork (it has
+// no fork interceptor), so a child forked while another thread allocates could wait for ever on a
+// lock nobody will release. A sanitized build waits its turn; its tests fork from one thread.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kForkBesideOtherThreads = false;
+#else
+constexpr bool kForkBesideOtherThreads = true;
+#endif
+
 // A model of more than 32 bits of state: its search may take seconds to minutes.
 bool large(const ir::Model& model) {
   std::size_t bits = 0;
@@ -326,31 +356,46 @@ SymbolicOutcome searchHoldingPackage(const ir::Model& model, std::size_t propert
     if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) {
       std::fprintf(stderr, "[symbolic] %zu rules compiled, %.1f s\n", model.rules.size(), std::chrono::duration<double>(CpuClock::now() - start).count());
     }
-    const bdd reach = product.reachable();
-    out.reachable = product.count(reach);
+    // The reachable states, the automaton's part over-approximated (reachableAnyAutomaton): a
+    // proof there is a proof. A violation found there counts only if the initial states reach
+    // it; otherwise the exact product states are computed and searched again.
+    bdd reach = product.reachableAnyAutomaton();
+    bool exact = false;
     if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) {
-      std::fprintf(stderr, "[symbolic] reachable: %.0f states, %d nodes, %.1f s\n", out.reachable, bdd_nodecount(reach),
+      std::fprintf(stderr, "[symbolic] reachable (any automaton state): %.0f states, %d nodes, %.1f s\n", product.count(reach), bdd_nodecount(reach),
                    std::chrono::duration<double>(CpuClock::now() - start).count());
     }
     // A step of a slice (or of the cone) that would leave a declared range is no step: the
     // relation has no such outcome (LivenessOptions::slice says why that is sound).
-    SettledSearch search(product, sensing, model.rules.size(), limits.narrowing);
+    std::optional<SettledSearch> search;
     const bool everyWorld = limits.everyWorld && prop.settled && sensing.points <= kEveryWorldPoints;
-    bool violated = limits.quietLoop ? search.violatedQuietly(reach)
-                    : everyWorld     ? search.violatedOnEveryWorld(reach)
-                                     : search.violated(reach, prop.settled);
-    // A hunt with no quiet loop goes on to loops that sense, one settling world at a time, with
-    // the time it has left: the dearer search, and the one a violation needs when the loop keeps
-    // reading a sensor (two robots that settle on different readings).
-    if (!violated && limits.quietLoop && limits.thenSettled) violated = search.violated(reach, prop.settled);
-    out.worlds = search.worlds();
+    // The worlds on two cores when the check has two threads (the helper holds a copy of the
+    // package: up to as much memory again). Not under AddressSanitizer, as below.
+    const bool helper = kForkBesideOtherThreads && limits.worldsHelper;
+    bool violated = false;
+    for (;;) {
+      search.emplace(product, sensing, model.rules.size(), limits.narrowing);
+      violated = limits.quietLoop ? search->violatedQuietly(reach)
+                 : everyWorld     ? search->violatedOnEveryWorld(reach, helper)
+                                  : search->violated(reach, prop.settled);
+      // A hunt with no quiet loop goes on to loops that sense, one settling world at a time, with
+      // the time it has left: the dearer search, and the one a violation needs when the loop keeps
+      // reading a sensor (two robots that settle on different readings).
+      if (!violated && limits.quietLoop && limits.thenSettled) violated = search->violated(reach, prop.settled);
+      if (!violated || exact || product.initialReaches(reach, search->fairStates())) break;
+      if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) std::fprintf(stderr, "[symbolic] the fair states found are not reachable: the exact set\n");
+      reach = product.reachable();
+      exact = true;
+    }
+    out.reachable = product.count(reach);
+    out.worlds = search->worlds();
     if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) {
       std::fprintf(stderr, "[symbolic] fair states searched in %u worlds: %s, %.1f s\n", out.worlds, violated ? "some" : "none",
                    std::chrono::duration<double>(CpuClock::now() - start).count());
     }
     out.kind = violated ? SymbolicOutcome::Kind::Violation : SymbolicOutcome::Kind::NoViolation;
     if (violated && limits.lasso) {
-      out.lasso = SymbolicLasso(product).build(reach, search.fairStates(), search.loopRules());
+      out.lasso = SymbolicLasso(product).build(reach, search->fairStates(), search->loopRules());
       out.lasso->property = prop.name;
     }
   } catch (const GiveUp& e) {
@@ -381,15 +426,6 @@ SymbolicOutcome searchHoldingPackage(const ir::Model& model, std::size_t propert
 // 67 s here; checker/README.md). A small model (the tests search hundreds, each in milliseconds)
 // waits its turn.
 //
-// Not under AddressSanitizer: g++ 12's does not hold its allocator's locks across a fork (it has
-// no fork interceptor), so a child forked while another thread allocates could wait for ever on a
-// lock nobody will release. A sanitized build waits its turn; its tests fork from one thread.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kForkBesideOtherThreads = false;
-#else
-constexpr bool kForkBesideOtherThreads = true;
-#endif
-
 SymbolicOutcome decideSymbolically(const ir::Model& model, std::size_t property, const SymbolicLimits& limits) {
   if (kForkBesideOtherThreads && large(model)) {
     std::unique_lock<std::mutex> ours(packageLock, std::try_to_lock);

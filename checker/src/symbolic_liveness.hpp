@@ -35,6 +35,8 @@ struct SymbolicLimits {
   // On a settling world: search each world with every sensed condition decided (up to six
   // conditions, 64 worlds) instead of splitting from the world that decides nothing.
   bool everyWorld = false;
+  // With everyWorld: a forked helper process searches worlds beside this one (shared_worlds.hpp).
+  bool worldsHelper = false;
   // Called about once a second: the product states reached (or still candidates for a fair
   // cycle), the round as the depth, the node table's bytes.
   std::function<void(const Progress&)> onProgress;
@@ -43,7 +45,10 @@ struct SymbolicLimits {
 struct SymbolicOutcome {
   enum class Kind { NoViolation, Violation, GaveUp };
   Kind kind = Kind::GaveUp;
-  double reachable = 0;  // product states reachable from the initial ones (counted, not enumerated)
+  // Product states searched (counted, not enumerated): the model's reachable states, each with
+  // the automaton states whose labels it satisfies; the exact reachable product states when a
+  // loop found there had to be checked against them (specs/ir.md, "Symbolic search").
+  double reachable = 0;
   std::uint32_t worlds = 0;  // settled-world splits searched (1 when none was needed)
   std::string why;       // GaveUp: why
   double seconds = 0;

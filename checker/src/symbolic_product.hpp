@@ -11,7 +11,6 @@
 #include <cstdlib>
 #include <functional>
 #include <map>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -34,10 +33,6 @@ inline int packageError = 0;
 inline void recordError(int code) {
   if (packageError == 0) packageError = code;
 }
-
-struct GiveUp : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 // The model and the automaton as decision diagrams. Each variable gets the bits of its offset from
 // its minimum (most significant first); each bit has a current and a next copy, side by side in
@@ -96,15 +91,60 @@ class SymbolicProduct {
   SymbolicProduct(const SymbolicProduct&) = delete;
   SymbolicProduct& operator=(const SymbolicProduct&) = delete;
 
-  // The product states reachable from the initial ones (forward, breadth-first).
-  bdd reachable() {
+  // A helper process forked to search beside the caller (shared_worlds.hpp) goes on with the time
+  // the caller had left, on a clock of its own (a new process's starts at zero), and reports no
+  // progress: only the caller does.
+  [[nodiscard]] CpuClock::duration timeLeft() const { return deadline_ - CpuClock::now(); }
+  void continueInHelper(CpuClock::duration left) {
+    deadline_ = CpuClock::now() + left;
+    onProgress_ = nullptr;
+  }
+
+  // The product states reachable from the initial ones (forward, chained: closeForward).
+  bdd reachable() { return closeForward(initialStates(), bddtrue, std::vector<char>(rules_.size(), 1), true); }
+
+  bdd initialStates() {
     bdd initial = bddtrue;
     for (ir::VarId v = 0; v < model_.variables.size(); ++v) initial &= cube(layouts_[v], model_.variables[v].init, false);
     bdd start = bddfalse;
     for (std::uint32_t q = 0; q < ba_.states.size(); ++q) {
       if (ba_.states[q].initial) start |= cube(automaton_, q, false);
     }
-    return closeForward(initial & start & labels_, bddtrue, std::vector<char>(rules_.size(), 1), true);
+    return initial & start & labels_;
+  }
+
+  // The model's reachable states, each with every automaton state its labels allow: the
+  // reachable product states and possibly more, as the automaton's state is not followed. The
+  // set is closed under the product's steps, so a fair loop outside it is in no reachable part of
+  // the product, and a loop in it that the initial states reach is real (specs/ir.md, "Symbolic
+  // search"). Without the automaton each image is one operation instead of four, on diagrams
+  // without its bits.
+  bdd reachableAnyAutomaton() { return reachableModelStates() & labels_; }
+
+  // The model's reachable states (on the model's bits only).
+  bdd reachableModelStates() {
+    bdd initial = bddtrue;
+    for (ir::VarId v = 0; v < model_.variables.size(); ++v) initial &= cube(layouts_[v], model_.variables[v].init, false);
+    const bdd states = closeForward(initial, bddtrue, std::vector<char>(rules_.size(), 1), true, false);
+    if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) {
+      std::fprintf(stderr, "[symbolic] the model's reachable states: %.0f, %d nodes\n", modelStates(states), bdd_nodecount(states));
+    }
+    return states;
+  }
+
+  // How many model states a product set holds (the automaton's state left out).
+  double modelStates(const bdd& states) { return count(bdd_exist(states, automatonCurrent_)) / static_cast<double>(1 << automaton_.bits); }
+
+  // One product step from `states`, by any rule or by time passing.
+  bdd successors(const bdd& states) {
+    bdd out = automatonStep(minus(states, enabledFair_));
+    for (const Rule& r : rules_) out |= automatonStep(bdd_replace(bdd_appex(states, r.relation, bddop_and, r.currentSet), r.toCurrent));
+    return out;
+  }
+
+  // Whether an initial product state reaches `target` inside `within`.
+  bool initialReaches(const bdd& within, const bdd& target) {
+    return (initialStates() & until(within, target & within, std::vector<char>(rules_.size(), 1))) != bddfalse;
   }
 
   // The automaton's move on reading the model's new state (the model's step already taken).
@@ -374,44 +414,54 @@ class SymbolicProduct {
   }
 
   // `reached` closed under the product steps of the rules `allowed` marks, and time passing where
-  // nothing fair can step, inside `within`: chaining with a frontier per rule. The rules are taken
+  // nothing fair can step, inside `within` (`product` false: the model's states alone, the rules'
+  // steps only; `within` is then not looked at): chaining with a frontier per rule. The rules are taken
   // deepest first in the variable order (by the first variable their relation reads or writes),
   // each only from the states it has not stepped from yet; after a rule adds states, the next is
   // again the deepest rule with states new to it, so the steps of the robots deep in the order are
   // closed over before those above them move. The set is that of breadth-first rounds, with smaller
   // diagrams on the way, and found sooner (checker/README.md, "Forward closure", has the figures).
-  bdd closeForward(bdd reached, const bdd& within, const std::vector<char>& allowed, bool report) {
+  bdd closeForward(bdd reached, const bdd& within, const std::vector<char>& allowed, bool report, bool product = true) {
     const std::vector<std::uint32_t>& order = deepestFirst(allowed);
-    std::vector<bdd> seen(order.size(), bddfalse);
-    // A rule has states new to it while the set has grown since it last stepped (`version` counts
-    // the growths); `seen` is the set it last stepped from.
-    std::uint64_t version = 1;
-    std::vector<std::uint64_t> steppedAt(order.size(), 0);
+    // The states each rule has not stepped from yet: what was added since it last stepped, kept
+    // as it is added, so that no step of the closure works on the whole set (`reached` minus what
+    // a rule had seen cost a pass over both at every image).
+    std::vector<bdd> pending(order.size(), reached);
+    std::size_t waiting = reached == bddfalse ? 0 : order.size();  // rules with pending states
     std::uint32_t passes = 0;
     std::uint64_t images = 0;
+    const auto addToAll = [&](const bdd& added) {
+      reached |= added;
+      for (bdd& p : pending) {
+        if (p == bddfalse) ++waiting;
+        p |= added;
+      }
+    };
     for (;;) {
       std::size_t i = 0;
-      while (i < order.size() && steppedAt[i] == version) ++i;
-      if (i == order.size()) {
-        if (report) progressOn(reached, ++passes);
+      if (waiting > 0) {
+        while (pending[i] == bddfalse) ++i;
+      } else {
+        if (report) progressOn(reached, ++passes, product);
+        if (!product) return reached;
         const bdd idle = minus(automatonStep(minus(reached, enabledFair_)) & within, reached);  // time passing
         if (idle == bddfalse) return reached;
-        reached |= idle;
-        ++version;
+        addToAll(idle);
         continue;
       }
-      steppedAt[i] = version;
-      const bdd fresh = minus(reached, seen[i]);
-      seen[i] = reached;
+      const bdd fresh = pending[i];
+      pending[i] = bddfalse;
+      --waiting;
       const Rule& rule = rules_[order[i]];
-      const bdd added = minus(automatonStep(bdd_replace(bdd_appex(fresh, rule.relation, bddop_and, rule.currentSet), rule.toCurrent)) & within, reached);
+      const bdd image = bdd_replace(bdd_appex(fresh, rule.relation, bddop_and, rule.currentSet), rule.toCurrent);
+      const bdd added = minus(product ? automatonStep(image) & within : image, reached);
       check();
       if (added == bddfalse) continue;
-      reached |= added;
-      ++version;
-      if (report && ++images % 1024 == 0) progressOn(reached, passes + 1);
+      addToAll(added);
+      if (report && ++images % 1024 == 0) progressOn(reached, passes + 1, product);
       if (report && images % 4096 == 0 && std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) {
-        std::fprintf(stderr, "[symbolic] %llu images: %.0f states, %d nodes\n", static_cast<unsigned long long>(images), count(reached), bdd_nodecount(reached));
+        std::fprintf(stderr, "[symbolic] %llu images: %.0f states, %d nodes, %.1f s\n", static_cast<unsigned long long>(images), count(reached), bdd_nodecount(reached),
+                     std::chrono::duration<double>(CpuClock::now() - started_).count());
       }
     }
   }
@@ -454,51 +504,15 @@ class SymbolicProduct {
     }
   }
   // What the progress reports say: the states of the set being computed, and its round.
-  void progressOn(const bdd& states, std::uint32_t round) {
+  void progressOn(const bdd& states, std::uint32_t round, bool product = true) {
     if (!onProgress_) return;
-    progressStates_ = count(states);
+    progressStates_ = product ? count(states) : modelStates(states);
     progressRound_ = round;
   }
 
-  static void add(Values& to, std::int64_t value, const bdd& when) {
-    if (when == bddfalse) return;
-    auto [it, added] = to.try_emplace(value, when);
-    if (!added) it->second |= when;
-    if (to.size() > kMaxValues) throw GiveUp("an expression takes more than 4,096 values");
-  }
-
+  // An expression's value table (valuesOf, symbolic_values.hpp), the budget checked as it grows.
   Values values(const ir::Expr& e) {
-    Values out;
-    switch (e.op) {
-      case ir::Op::Const: add(out, e.value, bddtrue); return out;
-      case ir::Op::Var: {
-        const BitLayout& l = layouts_[static_cast<ir::VarId>(e.value)];
-        for (std::int64_t k = l.min; k <= l.max; ++k) add(out, k, cube(l, k, false));
-        return out;
-      }
-      case ir::Op::Not:
-        add(out, 1, !truth(values(e.args[0])));
-        add(out, 0, truth(values(e.args[0])));
-        return out;
-      case ir::Op::Neg:
-        for (const auto& [value, when] : values(e.args[0])) add(out, -value, when);
-        return out;
-      case ir::Op::Ite: {
-        const bdd c = truth(values(e.args[0]));
-        for (const auto& [value, when] : values(e.args[1])) add(out, value, c & when);
-        for (const auto& [value, when] : values(e.args[2])) add(out, value, (!c) & when);
-        return out;
-      }
-      default: {
-        const Values a = values(e.args[0]);
-        const Values b = values(e.args[1]);
-        for (const auto& [x, wx] : a) {
-          for (const auto& [y, wy] : b) add(out, evaluate(e.op, x, y), wx & wy);
-        }
-        check();
-        return out;
-      }
-    }
+    return valuesOf(e, layouts_, [this] { check(); });
   }
 
   void buildAutomaton() {
@@ -577,8 +591,8 @@ class SymbolicProduct {
   const ir::Model& model_;
   const Buchi& ba_;
   const Fairness& fairness_;
-  const CpuClock::time_point deadline_;
-  const std::function<void(const Progress&)> onProgress_;
+  CpuClock::time_point deadline_;
+  std::function<void(const Progress&)> onProgress_;
   const CpuClock::time_point started_ = CpuClock::now();
   CpuClock::time_point lastProgress_ = CpuClock::now();
   double progressStates_ = 0;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <map>
+#include <stdexcept>
 #include <vector>
 
 #include "semo/semantics/ir.hpp"
@@ -80,6 +81,59 @@ inline bdd truth(const Values& v) {
     if (value != 0) t |= when;
   }
   return t;
+}
+
+
+// Why the symbolic search stopped before its end: a budget, a full node table, an expression too
+// wide to tabulate. The search reports it as undecided.
+struct GiveUp : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+inline void addValue(Values& to, std::int64_t value, const bdd& when) {
+  if (when == bddfalse) return;
+  auto [it, added] = to.try_emplace(value, when);
+  if (!added) it->second |= when;
+  if (to.size() > kMaxValues) throw GiveUp("an expression takes more than 4,096 values");
+}
+
+// The value table of an expression over variables laid out as `layouts` says; `check` runs after
+// each binary operator (the product of two tables is where the work lies) and may throw to stop.
+template <typename Check>
+Values valuesOf(const ir::Expr& e, const std::vector<BitLayout>& layouts, const Check& check) {
+  Values out;
+  switch (e.op) {
+    case ir::Op::Const: addValue(out, e.value, bddtrue); return out;
+    case ir::Op::Var: {
+      const BitLayout& l = layouts[static_cast<ir::VarId>(e.value)];
+      for (std::int64_t k = l.min; k <= l.max; ++k) addValue(out, k, cube(l, k, false));
+      return out;
+    }
+    case ir::Op::Not: {
+      const bdd holds = truth(valuesOf(e.args[0], layouts, check));
+      addValue(out, 1, !holds);
+      addValue(out, 0, holds);
+      return out;
+    }
+    case ir::Op::Neg:
+      for (const auto& [value, when] : valuesOf(e.args[0], layouts, check)) addValue(out, -value, when);
+      return out;
+    case ir::Op::Ite: {
+      const bdd c = truth(valuesOf(e.args[0], layouts, check));
+      for (const auto& [value, when] : valuesOf(e.args[1], layouts, check)) addValue(out, value, c & when);
+      for (const auto& [value, when] : valuesOf(e.args[2], layouts, check)) addValue(out, value, (!c) & when);
+      return out;
+    }
+    default: {
+      const Values a = valuesOf(e.args[0], layouts, check);
+      const Values b = valuesOf(e.args[1], layouts, check);
+      for (const auto& [x, wx] : a) {
+        for (const auto& [y, wy] : b) addValue(out, evaluate(e.op, x, y), wx & wy);
+      }
+      check();
+      return out;
+    }
+  }
 }
 
 }  // namespace semo::checker::detail

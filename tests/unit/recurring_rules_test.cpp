@@ -89,7 +89,7 @@ TEST(RecurringRules, TheSearchOfEveryWorldProvesWhatOnlyANarrowedLoopCouldBreak)
 // The soundness claim, tested where the explicit search is the reference: on random models, every
 // world searched with its loops narrowed gives the same verdict, and each lasso passes the check.
 TEST(RecurringRules, RandomModelsWithNarrowedLoopsGetTheExplicitVerdicts) {
-  int narrowedRules = 0, violated = 0, proven = 0;
+  int narrowedRules = 0, violated = 0, proven = 0, manyWorlds = 0;
   for (std::uint32_t seed = 1; seed <= test::randomModels(300); ++seed) {
     const std::string text = test::RandomModel(seed).text();
     SCOPED_TRACE("seed " + std::to_string(seed) + ":\n" + text);
@@ -111,6 +111,20 @@ TEST(RecurringRules, RandomModelsWithNarrowedLoopsGetTheExplicitVerdicts) {
       const SymbolicOutcome s = detail::decideSymbolically(m, k, limits);
       ASSERT_NE(s.kind, SymbolicOutcome::Kind::GaveUp) << s.why;
       EXPECT_EQ(s.kind == SymbolicOutcome::Kind::Violation, reference.properties[k].verdict == Verdict::Violated);
+      // The worlds shared with a forked helper (shared_worlds.hpp): the same outcome, the same
+      // world, the same lasso, whichever process searched which world.
+      limits.worldsHelper = true;
+      const SymbolicOutcome shared = detail::decideSymbolically(m, k, limits);
+      EXPECT_EQ(shared.kind, s.kind);
+      EXPECT_EQ(shared.worlds, s.worlds);
+      EXPECT_EQ(shared.lasso.has_value(), s.lasso.has_value());
+      if (shared.lasso && s.lasso) {
+        EXPECT_EQ(shared.lasso->initial, s.lasso->initial);
+        EXPECT_EQ(shared.lasso->loopStart, s.lasso->loopStart);
+        ASSERT_EQ(shared.lasso->steps.size(), s.lasso->steps.size());
+        for (std::size_t i = 0; i < s.lasso->steps.size(); ++i) EXPECT_EQ(shared.lasso->steps[i].rule, s.lasso->steps[i].rule);
+      }
+      manyWorlds += s.worlds > 1 ? 1 : 0;
       if (s.kind != SymbolicOutcome::Kind::Violation) {
         ++proven;
         continue;
@@ -123,6 +137,7 @@ TEST(RecurringRules, RandomModelsWithNarrowedLoopsGetTheExplicitVerdicts) {
   EXPECT_GT(narrowedRules, test::atLeast(50));  // the narrowing left rules out, and the verdicts held
   EXPECT_GT(proven, test::atLeast(50));
   EXPECT_GT(violated, test::atLeast(50));
+  EXPECT_GT(manyWorlds, test::atLeast(20));  // searches that went past the first world
 }
 
 // The search of the exact cone, as checkSliced runs it last: a proof or a rebuilt lasso, each the

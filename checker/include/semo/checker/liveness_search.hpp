@@ -30,7 +30,8 @@ struct LivenessMethod {
   std::string slicingGaveUp;      // why no slice decided, when the whole product was searched after them
   bool roundRobin = false;        // the violation was found under a round-robin scheduler (region_lasso.hpp)
   // Sliced: the deciding slice was too large to enumerate and was searched as decision diagrams
-  // (symbolic_liveness.hpp); symbolicStates counts the reachable product states of the slices so searched.
+  // (symbolic_liveness.hpp); symbolicStates counts the product states of the slices so searched
+  // (SymbolicOutcome::reachable).
   bool symbolic = false;
   double symbolicStates = 0;
   // Violated: the lasso was found by the hunt on the property's cone, without crashes
