@@ -103,9 +103,15 @@ class SymbolicProduct {
   // The product states reachable from the initial ones (forward, chained: closeForward).
   bdd reachable() { return closeForward(initialStates(), bddtrue, std::vector<char>(rules_.size(), 1), true); }
 
-  bdd initialStates() {
+  // The model's initial state (on the model's bits only).
+  bdd initialModelState() const {
     bdd initial = bddtrue;
     for (ir::VarId v = 0; v < model_.variables.size(); ++v) initial &= cube(layouts_[v], model_.variables[v].init, false);
+    return initial;
+  }
+
+  bdd initialStates() {
+    const bdd initial = initialModelState();
     bdd start = bddfalse;
     for (std::uint32_t q = 0; q < ba_.states.size(); ++q) {
       if (ba_.states[q].initial) start |= cube(automaton_, q, false);
@@ -123,9 +129,7 @@ class SymbolicProduct {
 
   // The model's reachable states (on the model's bits only).
   bdd reachableModelStates() {
-    bdd initial = bddtrue;
-    for (ir::VarId v = 0; v < model_.variables.size(); ++v) initial &= cube(layouts_[v], model_.variables[v].init, false);
-    const bdd states = closeForward(initial, bddtrue, std::vector<char>(rules_.size(), 1), true, false);
+    const bdd states = closeForward(initialModelState(), bddtrue, std::vector<char>(rules_.size(), 1), true, false);
     if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) {
       std::fprintf(stderr, "[symbolic] the model's reachable states: %.0f, %d nodes\n", modelStates(states), bdd_nodecount(states));
     }
