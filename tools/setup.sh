@@ -102,7 +102,10 @@ case "$mode" in
     # swarm's (EmitSwarm3) run the same generated code and runtime under the sanitizers, as programs
     # and in the simulator. The random-model comparisons go through a fifth of their models here
     # (tests/unit/random_model.hpp). Each GoogleTest program runs in a few parts rather than a
-    # process per test (tests/CMakeLists.txt, semo_add_gtests).
+    # process per test (tests/CMakeLists.txt, semo_add_gtests). Label `release_only`: the install
+    # and package test, and runs on the largest models whose code the sanitized tests run on
+    # smaller ones (scouting's task graphs printed three ways, its IC3 and the two largest BMC
+    # comparisons; tests/e2e/CMakeLists.txt says why for each).
     step "tests under the sanitizers (ctest -LE 'heavy|spin|release_only')"
     # The stacks kept for where each block was allocated and freed are 10 frames deep instead of 30
     # (a report's own stack stays whole), freed memory waits in a quarantine of 64 MB instead of
