@@ -546,6 +546,7 @@ class Reader {
     // The operands and operators of the chain at this level, then the tree: left to right, a run
     // of one associative operator (a && b && c, a + b + c) as a balanced tree, so that a chain of
     // n terms costs n to read and is log n deep (ir::associated).
+    const Token start = peek();
     std::vector<Expr> operands;
     std::vector<Op> ops;
     operands.push_back(binary(level + 1));
@@ -562,6 +563,15 @@ class Reader {
         break;
       }
       if (!matched) break;
+    }
+    // Each run nests the tree one level deeper. Refused before the tree is built: a tree of a
+    // million levels (a 4 MB chain of '- 1') could not even be destroyed, its destructor being
+    // recursive (a stack overflow, found under the sanitizers).
+    std::size_t runs = 0;
+    for (std::size_t i = 0; i < ops.size(); ++i) runs += i == 0 || !isAssociative(ops[i]) || ops[i] != ops[i - 1] ? 1 : 0;
+    if (runs > kMaxTreeDepth) {
+      fail(start, "expression nested too deeply (at least " + std::to_string(runs + 1) + " levels, limit " +
+                      std::to_string(kMaxTreeDepth) + "): a chain of '-', '/', '%' or comparisons nests one level per operator");
     }
     Expr left = std::move(operands[0]);
     for (std::size_t i = 0; i < ops.size();) {

@@ -266,6 +266,9 @@ TEST(HostileIr, NestingFarPastTheLimit) {
             "hostile\\.ir:3:[0-9]+: error: expression nested too deeply \\(limit 256\\)");
   // A chain of a non-associative operator nests one level per operator.
   irRefused(w, kIrHead + "rule r : x" + repeat(" - 1", kHuge) + " == 0 -> x' = 1;\n", "hostile\\.ir:3:[0-9]+: error: expression nested too deeply");
+  // Ten times as long (4 MB): the tree was once built before its depth was measured, and its
+  // recursive destructor overflowed the stack (a crash in the release build too).
+  irRefused(w, kIrHead + "rule r : x" + repeat(" - 1", 10 * kHuge) + " == 0 -> x' = 1;\n", "hostile\\.ir:3:[0-9]+: error: expression nested too deeply");
   irRefused(w, kIrHead + "rule r : x == 0 -> x' = 1;\nproperty p : " + repeat("always ", kHuge) + "{x == 0};\n",
             "hostile\\.ir:4:[0-9]+: error: formula nested too deeply");
   irRefused(w, kIrHead + "rule r : x == 0 -> x' = 1;\nproperty p : " + repeat("(", kHuge) + "{x == 0}" + repeat(")", kHuge) + ";\n",
