@@ -512,11 +512,12 @@ class Reader {
       deepest = std::max(deepest, depth);
       for (const Expr& a : node->args) todo.emplace_back(&a, depth + 1);
     }
-    if (deepest > kMaxTreeDepth) {
-      fail(start, "expression nested too deeply (" + std::to_string(deepest) + " levels, limit " + std::to_string(kMaxTreeDepth) +
-                      "): a chain of '-', '/', '%' or comparisons nests one level per operator");
-    }
+    if (deepest > kMaxTreeDepth) treeTooDeep(start, std::to_string(deepest));
     return e;
+  }
+  [[noreturn]] void treeTooDeep(const Token& start, const std::string& levels) {
+    fail(start, "expression nested too deeply (" + levels + " levels, limit " + std::to_string(kMaxTreeDepth) +
+                    "): a chain of '-', '/', '%' or comparisons nests one level per operator");
   }
 
   Expr expr() {
@@ -569,10 +570,7 @@ class Reader {
     // recursive (a stack overflow, found under the sanitizers).
     std::size_t runs = 0;
     for (std::size_t i = 0; i < ops.size(); ++i) runs += i == 0 || !isAssociative(ops[i]) || ops[i] != ops[i - 1] ? 1 : 0;
-    if (runs > kMaxTreeDepth) {
-      fail(start, "expression nested too deeply (at least " + std::to_string(runs + 1) + " levels, limit " +
-                      std::to_string(kMaxTreeDepth) + "): a chain of '-', '/', '%' or comparisons nests one level per operator");
-    }
+    if (runs > kMaxTreeDepth) treeTooDeep(start, "at least " + std::to_string(runs + 1));
     Expr left = std::move(operands[0]);
     for (std::size_t i = 0; i < ops.size();) {
       std::size_t end = i + 1;
