@@ -117,7 +117,7 @@ int run(int argc, char** argv) {
                     "searched on every settling world (default 0: not tried; scouting's mode_agreement needs about 1,600)")
         ->check(CLI::Range(0.0, 86400.0));
     cmd->add_option("--slice-states", check.sliceStates,
-                    "Product states one slice of the model may take (default 500000; --max-states, if lower, bounds it too)")
+                    "Product states one slice of the model may take (default 50000; --max-states, if lower, bounds it too)")
         ->check(CLI::Range(std::uint64_t{1}, UINT64_MAX));
     cmd->add_option("--threads", check.threads,
                     "Threads for the searches (default: SEMO_THREADS if set, else one per core; the results do not depend on it)")
