@@ -96,6 +96,18 @@ z3::expr SmtEncoding::stepBy(std::size_t action, std::size_t k) {
   return z3::mk_and(parts);
 }
 
+z3::expr SmtEncoding::stepLeavesRange(std::size_t action, std::size_t k) {
+  const Action& a = actions_[action];
+  const ir::Rule& rule = m_.rules[a.rule];
+  z3::expr_vector leaves(ctx_);
+  for (const ir::Assignment& as : rule.branches[a.branch].assignments) {
+    const ir::Variable& x = m_.variables[as.var];
+    const z3::expr v = value(as.value, k);
+    leaves.push_back(v < x.min || v > x.max);
+  }
+  return truth(rule.guard, k) && z3::mk_or(leaves);
+}
+
 z3::expr SmtEncoding::enabled(std::size_t k) {
   z3::expr_vector guards(ctx_);
   for (const ir::Rule& r : m_.rules) guards.push_back(truth(r.guard, k));

@@ -30,6 +30,9 @@ class SmtEncoding {
   [[nodiscard]] z3::expr transitionByCases(std::size_t k);
   // Step k -> k+1 by the rule outcome actions()[action]: its guard, its assignments, the rest kept.
   [[nodiscard]] z3::expr stepBy(std::size_t action, std::size_t k);
+  // actions()[action] is enabled at step k and one of its assignments gives a value outside its
+  // variable's range (the variables it keeps stay where they are: they need no next step).
+  [[nodiscard]] z3::expr stepLeavesRange(std::size_t action, std::size_t k);
   [[nodiscard]] z3::expr holds(const ir::Expr& e, std::size_t k);  // e is true (non-zero) at step k
   [[nodiscard]] z3::expr enabled(std::size_t k);          // some rule is enabled at step k
   [[nodiscard]] z3::expr sameState(std::size_t a, std::size_t b);
