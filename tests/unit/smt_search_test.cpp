@@ -135,6 +135,38 @@ TEST(SmtSearch, BoundedModelCheckingFindsARangeErrorWithinTheBound) {
   EXPECT_EQ(g.search.properties[0].verdict, Verdict::Proven);
 }
 
+TEST(SmtSearch, RangesKeptByEveryOutcomeNeedNoProofOfTheirOwn) {
+  // No induction to carry the ranges along (as when only LTL properties are checked): each rule
+  // outcome keeps them (`reset` is never enabled within them), so they are taken as 1-inductive and
+  // IC3 is not run on them. A second assignment of one outcome leaving its range is still seen, and
+  // found by IC3.
+  const std::string kept = "semo-ir 1;\nvar x : 0..5 = 0;\nvar y : 0..3 = 0;\n"
+                           "rule inc @fair : x < 5 -> x' = x + 1, y' = y;\n"
+                           "rule reset @fair : x > 5 -> x' = 100;\n"
+                           "rule wrap @fair : x == 5 -> x' = 0, y' = (y + 1) % 4;\n"
+                           "property settles : always eventually {x == 0};\n";
+  std::vector<std::string> phases;
+  SmtOptions options;
+  options.maxDepth = 2;
+  options.induction = false;
+  options.onPhase = [&phases](const std::string& p) { phases.push_back(p); };
+  SmtResult r = checkSafetySmt(test::parseIr(kept), options);
+  EXPECT_FALSE(r.search.rangeError.has_value());
+  EXPECT_TRUE(r.note.empty()) << r.note;
+  for (const std::string& p : phases) EXPECT_EQ(p.find("ranges"), std::string::npos) << p;
+
+  std::string leaves = kept;
+  leaves.replace(leaves.find("(y + 1) % 4"), 11, "y + 1");  // y reaches 4 on the fourth wrap
+  phases.clear();
+  r = checkSafetySmt(test::parseIr(leaves), options);
+  ASSERT_TRUE(r.search.rangeError.has_value());
+  EXPECT_EQ(r.search.rangeError->steps.size(), 24u);
+  EXPECT_EQ(r.search.rangeError->steps.size(), checkSafety(test::parseIr(leaves), {}).rangeError->steps.size());
+  bool ic3OnRanges = false;
+  for (const std::string& p : phases) ic3OnRanges = ic3OnRanges || p == "smt: IC3 on the variables' ranges";
+  EXPECT_TRUE(ic3OnRanges);
+}
+
 TEST(SmtSearch, TruncatingDivisionAsTheExplicitEngine) {
   // -7 / 2 = -3 and -7 % 2 = -1 in C (and in the explicit engine); x / 0 = 0.
   ir::Model m = test::parseIr("semo-ir 1;\nvar a : -9..9 = -7;\nvar q : -9..9 = 0;\nvar r : -9..9 = 0;\nvar z : -9..9 = 5;\n"
