@@ -67,7 +67,7 @@ struct CheckOptions {
   bool symbolic = true;
   bool walks = true;            // LivenessOptions::walks
   std::uint64_t walkSeed = 1;   // LivenessOptions::walkSeed
-  std::uint64_t sliceStates = 50'000;  // LivenessOptions::sliceStates
+  std::uint64_t sliceStates = checker::LivenessOptions{}.sliceStates;
   double symbolicSeconds = checker::LivenessOptions{}.symbolicSeconds;
   double coneSeconds = checker::LivenessOptions{}.coneSeconds;
   bool safetyOnly = false;
