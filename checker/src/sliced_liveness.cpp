@@ -262,10 +262,26 @@ void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLim
 // deliveries cannot, and the fixpoint of each world ends in seconds to minutes where it did not
 // end in 15 minutes; the reachable states stay the dear part (checker/README.md).
 void proveOnCone(const CompiledModel& full, const ControlFacts& facts, std::size_t property, const SearchLimits& limits,
-                 SlicedOutcome& out, double seconds) {
+                 SlicedOutcome& out, double seconds, const std::vector<std::size_t>& provenInvariants) {
   const ir::Model& model = facts.model;
   const ir::Property& prop = model.properties.at(property);
-  const Slice cone = sliceModel(model, property, coneOfInfluence(model, property, facts.neverFires), facts.neverFires);
+  Slice cone = sliceModel(model, property, coneOfInfluence(model, property, facts.neverFires), facts.neverFires);
+  // Each proven invariant as the cone sees it (what it says of the cone's variables whatever the
+  // others hold: implied by it, so true in every reachable state of the cone too); one that reads
+  // none of the cone's variables says nothing there.
+  std::vector<std::string> assumed;
+  std::vector<char> inCone(model.variables.size(), 0);
+  for (ir::VarId v : cone.variables) inCone[v] = 1;
+  for (std::size_t i : provenInvariants) {
+    const ir::Invariant& inv = model.invariants.at(i);
+    std::vector<char> reads(model.variables.size(), 0);
+    markVariablesRead(inv.holds, reads);
+    bool seen = false;
+    for (ir::VarId v = 0; v < reads.size() && !seen; ++v) seen = reads[v] != 0 && inCone[v] != 0;
+    if (!seen) continue;
+    cone.model.invariants.push_back({inv.name, inv.origin, seenThrough(inv.holds, cone, model.variables.size())});
+    assumed.push_back(inv.name);
+  }
   if (cone.tooCoarse) {
     out.why += "; the exact cone: an update has too many values to enumerate";
     return;
@@ -279,6 +295,7 @@ void proveOnCone(const CompiledModel& full, const ControlFacts& facts, std::size
   exact.narrowing = &narrowing;
   exact.everyWorld = true;
   exact.worldsHelper = limits.threads >= 2;
+  exact.overApproximate = true;
   const SymbolicOutcome r = decideSymbolically(cone.model, 0, exact);
   out.symbolicSeconds += r.seconds;
   const std::string where = "the exact cone of " + std::to_string(cone.variables.size()) + " variables";
@@ -288,6 +305,7 @@ void proveOnCone(const CompiledModel& full, const ControlFacts& facts, std::size
     out.onCone = true;
     out.keptVariables = cone.variables.size();
     out.symbolicStates = r.reachable;
+    if (r.overApproximated) out.assumedInvariants = std::move(assumed);
     return;
   }
   if (r.kind == SymbolicOutcome::Kind::Violation && r.lasso) {
@@ -304,7 +322,7 @@ void proveOnCone(const CompiledModel& full, const ControlFacts& facts, std::size
 
 SlicedOutcome checkSliced(const CompiledModel& full, const ControlFacts& facts, std::size_t property, const SearchLimits& limits,
                           std::uint64_t sliceStates, bool symbolic, std::optional<std::uint64_t> walkSeed, double symbolicSeconds,
-                          double coneSeconds) {
+                          double coneSeconds, const std::vector<std::size_t>& provenInvariants) {
   SlicedOutcome out = refineSlices(full, facts, property, limits, sliceStates, symbolic, symbolicSeconds);
   if (walkSeed && out.property.verdict == Verdict::Unknown) walkForLasso(full, property, limits, *walkSeed, out);
   const std::string& name = full.model().properties[property].name;
@@ -314,7 +332,7 @@ SlicedOutcome checkSliced(const CompiledModel& full, const ControlFacts& facts, 
   }
   if (symbolic && coneSeconds > 0 && out.property.verdict == Verdict::Unknown) {
     if (limits.onPhase) limits.onPhase("liveness: " + name + ": searching its exact cone, crashes included, on every settling world (symbolically)");
-    proveOnCone(full, facts, property, limits, out, coneSeconds);
+    proveOnCone(full, facts, property, limits, out, coneSeconds, provenInvariants);
   }
   return out;
 }

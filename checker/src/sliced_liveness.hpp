@@ -30,6 +30,9 @@ struct SlicedOutcome {
   // Decided on the property's exact cone, crashes and discoveries included, every settling world
   // searched with its loops narrowed (sliced_liveness.cpp, proveOnCone); keptVariables is the cone's.
   bool onCone = false;
+  // onCone and proven: the proven invariants (their names) the search assumed, its reachable states
+  // over-approximated within them (projected_reach.hpp); empty when it computed them exactly.
+  std::vector<std::string> assumedInvariants;
   double symbolicSeconds = 0;     // spent in symbolic searches (slices and hunt)
   // The violation was found by random walks on the whole model (lasso_walks.hpp), after no slice
   // decided, in the `walks`-th walk.
@@ -50,9 +53,11 @@ void huntOnCone(const CompiledModel& full, std::size_t property, const SearchLim
 // The search of the property's exact cone of influence, crashes and discoveries included, on every
 // settling world, each world's loops narrowed to the rules that can recur (recurring_rules.hpp),
 // within `seconds` of processor time: a proof or a lasso rebuilt on the whole model becomes
-// `out`'s verdict (onCone); otherwise out.why says how it ended.
+// `out`'s verdict (onCone); otherwise out.why says how it ended. `provenInvariants` (indices into
+// the model's invariants, proven by the check) bound the superset of the reachable states the
+// search starts from (projected_reach.hpp).
 void proveOnCone(const CompiledModel& full, const ControlFacts& facts, std::size_t property, const SearchLimits& limits,
-                 SlicedOutcome& out, double seconds);
+                 SlicedOutcome& out, double seconds, const std::vector<std::size_t>& provenInvariants = {});
 
 // Random walks on the whole model for a fair violation (lasso_walks.hpp): a lasso found becomes
 // `out`'s verdict (walked); otherwise out.why says how many walks found none. Never a proof.
@@ -65,6 +70,7 @@ void walkForLasso(const CompiledModel& full, std::size_t property, const SearchL
 // cone (LivenessOptions::coneSeconds), which can prove.
 SlicedOutcome checkSliced(const CompiledModel& full, const ControlFacts& facts, std::size_t property, const SearchLimits& limits,
                           std::uint64_t sliceStates, bool symbolic, std::optional<std::uint64_t> walkSeed = 1,
-                          double symbolicSeconds = LivenessOptions{}.symbolicSeconds, double coneSeconds = 0);
+                          double symbolicSeconds = LivenessOptions{}.symbolicSeconds, double coneSeconds = 0,
+                          const std::vector<std::size_t>& provenInvariants = {});
 
 }  // namespace semo::checker::detail

@@ -16,6 +16,7 @@
 #include "semo/checker/fairness.hpp"
 #include "semo/checker/trace.hpp"
 #include "recurring_rules.hpp"
+#include "projected_reach.hpp"
 #include "shared_worlds.hpp"
 #include "symbolic_apart.hpp"
 #include "symbolic_product.hpp"
@@ -356,13 +357,16 @@ SymbolicOutcome searchHoldingPackage(const ir::Model& model, std::size_t propert
     if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) {
       std::fprintf(stderr, "[symbolic] %zu rules compiled, %.1f s\n", model.rules.size(), std::chrono::duration<double>(CpuClock::now() - start).count());
     }
-    // The reachable states, the automaton's part over-approximated (reachableAnyAutomaton): a
-    // proof there is a proof. A violation found there counts only if the initial states reach
-    // it; otherwise the exact product states are computed and searched again.
-    bdd reach = product.reachableAnyAutomaton();
+    // The reachable states, the automaton's part over-approximated (reachableAnyAutomaton), or
+    // a superset of the model's too (projectedReachable): a proof there is a proof. A violation
+    // found there counts only if the initial states reach it (a path from them by the model's
+    // steps passes reachable states only); otherwise the exact product states are computed and
+    // searched again.
+    bdd reach = limits.overApproximate ? projectedReachable(product, model) & product.labels() : product.reachableAnyAutomaton();
     bool exact = false;
     if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) {
-      std::fprintf(stderr, "[symbolic] reachable (any automaton state): %.0f states, %d nodes, %.1f s\n", product.count(reach), bdd_nodecount(reach),
+      std::fprintf(stderr, "[symbolic] reachable (any automaton state%s): %.0f states, %d nodes, %.1f s\n",
+                   limits.overApproximate ? ", a superset projected" : "", product.count(reach), bdd_nodecount(reach),
                    std::chrono::duration<double>(CpuClock::now() - start).count());
     }
     // A step of a slice (or of the cone) that would leave a declared range is no step: the
@@ -389,6 +393,7 @@ SymbolicOutcome searchHoldingPackage(const ir::Model& model, std::size_t propert
     }
     out.reachable = product.count(reach);
     out.worlds = search->worlds();
+    out.overApproximated = limits.overApproximate && !exact && !violated;
     if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) {
       std::fprintf(stderr, "[symbolic] fair states searched in %u worlds: %s, %.1f s\n", out.worlds, violated ? "some" : "none",
                    std::chrono::duration<double>(CpuClock::now() - start).count());

@@ -37,6 +37,10 @@ struct SymbolicLimits {
   bool everyWorld = false;
   // With everyWorld: a forked helper process searches worlds beside this one (shared_worlds.hpp).
   bool worldsHelper = false;
+  // Search the fair states first within a superset of the reachable states (projected_reach.hpp,
+  // bounded by the model's invariants, which the caller must have proven), and compute the exact
+  // reachable states only when fair states found there may be reachable.
+  bool overApproximate = false;
   // Called about once a second: the product states reached (or still candidates for a fair
   // cycle), the round as the depth, the node table's bytes.
   std::function<void(const Progress&)> onProgress;
@@ -50,6 +54,9 @@ struct SymbolicOutcome {
   // loop found there had to be checked against them (specs/ir.md, "Symbolic search").
   double reachable = 0;
   std::uint32_t worlds = 0;  // settled-world splits searched (1 when none was needed)
+  // NoViolation found within the superset of SymbolicLimits::overApproximate (`reachable` counts
+  // its product states): the model's invariants were assumed.
+  bool overApproximated = false;
   std::string why;       // GaveUp: why
   double seconds = 0;
   std::optional<Trace> lasso;  // Violation: a lasso of the model (kind "lasso", loopStart set)

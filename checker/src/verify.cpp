@@ -67,9 +67,14 @@ void explicitSafetyVerdicts(Report& out) {
 std::string livenessSearchText(const LivenessMethod& m, std::size_t variables) {
   const std::string states = std::to_string(m.states) + " product states";
   if (m.sliced && m.onCone) {
+    std::string within = fmt::format("{:.0f}", m.symbolicStates) + " product states counted";
+    if (!m.assumedInvariants.empty()) {
+      within = "within a superset of the reachable states bounded by the proven invariants ";
+      for (std::size_t i = 0; i < m.assumedInvariants.size(); ++i) within += (i == 0 ? "" : ", ") + m.assumedInvariants[i];
+      within += " (" + fmt::format("{:.0f}", m.symbolicStates) + " product states counted)";
+    }
     return "symbolically (decision diagrams) on the property's exact cone of influence (" + std::to_string(m.keptVariables) + " of " +
-           std::to_string(variables) + " variables, crashes included), every settling world, " +
-           fmt::format("{:.0f}", m.symbolicStates) + " product states counted";
+           std::to_string(variables) + " variables, crashes included), every settling world, " + within;
   }
   if (m.sliced && m.symbolic) {
     return "symbolically (decision diagrams) on a slice of " + std::to_string(m.keptVariables) + " of " + std::to_string(variables) +
@@ -135,6 +140,10 @@ void runLiveness(Report& out, const ir::Model& model, const VerifyOptions& optio
   if (out.livenessSkipped.empty()) {
     // A small state space, explored whole: each product is searched whole first (exact, fast).
     LivenessOptions tuned = liveness;
+    // The invariants this check proved (the safety results list them in the model's order).
+    for (std::size_t i = 0; i < model.invariants.size() && i < r.properties.size(); ++i) {
+      if (r.properties[i].verdict == Verdict::Proven && r.properties[i].name == model.invariants[i].name) tuned.provenInvariants.push_back(i);
+    }
     if (tuned.wholeProduct && !tuned.slicesFirst && r.complete && r.states > 0 && r.states <= kWholeFirstReachable) {
       tuned.wholeFirstStates = std::clamp<std::uint64_t>(10 * r.states, kWholeFirstProduct, kWholeFirstProductMost);
     }

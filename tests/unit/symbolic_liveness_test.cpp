@@ -15,6 +15,7 @@
 #include "../../checker/src/symbolic_liveness.hpp"
 #include "ir_support.hpp"
 #include "random_model.hpp"
+#include "true_invariant.hpp"
 #include "semo/checker/compiled_model.hpp"
 #include "semo/checker/lasso_check.hpp"
 #include "semo/checker/liveness_search.hpp"
@@ -64,6 +65,45 @@ TEST(SymbolicLiveness, RandomModelsGetTheExplicitVerdictsAndCheckedLassos) {
     EXPECT_TRUE(c.counterexample()) << c.why << " unfair " << c.unfairGroups.size() << " unsettled " << c.unsettled.size();
   });
   EXPECT_GT(proven, test::atLeast(100));
+  EXPECT_GT(violated, test::atLeast(100));
+}
+
+// Searched within the projected superset of the reachable states (SymbolicLimits::overApproximate,
+// as on an exact cone), bounded by a true invariant where the model has one (as the check's proven
+// ones): the explicit verdict every time, proofs found within the superset on some models, and
+// the exact reachable states searched again on others, where the superset's fair states were not
+// reachable (that fallback must not turn a proof into a violation, nor miss one).
+TEST(SymbolicLiveness, SearchesWithinTheProjectedSupersetGetTheExplicitVerdicts) {
+  int withinSuperset = 0, exactAgain = 0, violated = 0;
+  for (std::uint32_t seed = 1; seed <= test::randomModels(300); ++seed) {
+    std::string text = test::RandomModel(seed).text();
+    const std::vector<std::string> invariants = test::trueInvariants(test::parseIr(text), 1);
+    if (!invariants.empty()) text += invariants.front();
+    SCOPED_TRACE("seed " + std::to_string(seed) + ":\n" + text);
+    const ir::Model m = test::parseIr(text);
+    const LivenessResult reference = explicitSearch(m);
+    ASSERT_TRUE(reference.complete);
+    for (std::size_t k = 0; k < m.properties.size(); ++k) {
+      SCOPED_TRACE(m.properties[k].name);
+      detail::SymbolicLimits limits;
+      limits.overApproximate = true;
+      limits.everyWorld = true;
+      const SymbolicOutcome s = detail::decideSymbolically(m, k, limits);
+      ASSERT_NE(s.kind, SymbolicOutcome::Kind::GaveUp) << s.why;
+      EXPECT_EQ(s.kind == SymbolicOutcome::Kind::Violation ? Verdict::Violated : Verdict::Proven, reference.properties[k].verdict);
+      if (s.kind == SymbolicOutcome::Kind::Violation) {
+        ++violated;
+        ASSERT_TRUE(s.lasso.has_value());
+        const LassoCheck c = checkLasso(m, *s.lasso, m.properties[k]);
+        EXPECT_TRUE(c.counterexample()) << c.why;
+      } else {
+        ++(s.overApproximated ? withinSuperset : exactAgain);
+      }
+    }
+  }
+  std::printf("%d proofs within the superset, %d on the exact states again, %d violations\n", withinSuperset, exactAgain, violated);
+  EXPECT_GT(withinSuperset, test::atLeast(100));
+  EXPECT_GT(exactAgain, test::atLeast(5));
   EXPECT_GT(violated, test::atLeast(100));
 }
 

@@ -201,6 +201,7 @@ nlohmann::json reportJson(const checker::Report& r, const ir::Model& model, cons
         if (m.onCone) {
           search["on"] = "exact cone, symbolically";
           search["symbolicProductStates"] = m.symbolicStates;
+          if (!m.assumedInvariants.empty()) search["assumedInvariants"] = m.assumedInvariants;
         }
         if (m.hunted) {
           search["on"] = "cone without crashes, symbolically";

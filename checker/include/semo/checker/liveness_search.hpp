@@ -40,6 +40,9 @@ struct LivenessMethod {
   // Decided on the property's exact cone of influence, crashes and discoveries included, every
   // settling world searched symbolically (LivenessOptions::coneSeconds); keptVariables is the cone's.
   bool onCone = false;
+  // onCone and proven within a superset of the reachable states bounded by these proven
+  // invariants (LivenessOptions::provenInvariants); empty: on the exact reachable states.
+  std::vector<std::string> assumedInvariants;
   // Violated: the lasso was found by random walks on the whole model (the walks-th), after no
   // slice decided.
   bool walked = false;
@@ -92,6 +95,11 @@ struct LivenessOptions {
   // proveOnCone). 0 (the default): not tried. It can prove what the slices cannot, at a price:
   // scouting's mode_agreement took 1,724 s of it (checker/README.md).
   double coneSeconds = 0;
+  // The model's invariants (indices into ir::Model::invariants) the check has proven. The search
+  // of an exact cone starts within a superset of the reachable states bounded by them, far cheaper
+  // than the reachable states themselves (scouting's mode_agreement: checker/README.md, "The exact
+  // cone"); a proof that used them names them.
+  std::vector<std::size_t> provenInvariants;
   // When no slice decides, random walks on the whole model hunt a fair violation first
   // (lasso_walks.hpp; at most 10 s), before the symbolic hunt and the round-robin one.
   bool walks = true;
