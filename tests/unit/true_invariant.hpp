@@ -16,12 +16,12 @@ inline std::vector<std::string> trueInvariants(const ir::Model& model, std::size
   std::vector<std::string> out;
   const checker::Stepper stepper(model);
   std::set<checker::Stepper::State> seen{stepper.initial()};
-  std::vector<checker::Stepper::State> todo{stepper.initial()};
-  while (!todo.empty()) {
-    const checker::Stepper::State s = todo.back();
-    todo.pop_back();
+  std::vector<checker::Stepper::State> frontier{stepper.initial()};
+  while (!frontier.empty()) {
+    const checker::Stepper::State s = frontier.back();
+    frontier.pop_back();
     for (auto& [choice, next] : stepper.successors(s)) {
-      if (seen.insert(next).second) todo.push_back(next);
+      if (seen.insert(next).second) frontier.push_back(next);
     }
   }
   const auto& vars = model.variables;
