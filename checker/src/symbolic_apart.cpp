@@ -92,6 +92,7 @@ std::string encode(const SymbolicOutcome& o) {
   w.put(static_cast<std::uint8_t>(o.kind));
   w.put(o.reachable);
   w.put(o.worlds);
+  w.put(o.openPoints);
   w.put(static_cast<std::uint8_t>(o.overApproximated));
   w.put(o.why);
   w.put(o.seconds);
@@ -124,6 +125,7 @@ SymbolicOutcome decodeOutcome(const std::string& frame) {
   o.kind = static_cast<SymbolicOutcome::Kind>(r.get<std::uint8_t>());
   o.reachable = r.get<double>();
   o.worlds = r.get<std::uint32_t>();
+  o.openPoints = r.get<std::uint32_t>();
   o.overApproximated = r.get<std::uint8_t>() != 0;
   o.why = r.text();
   o.seconds = r.get<double>();

@@ -55,19 +55,31 @@ class SettledSearch {
     std::vector<std::int8_t> world(settled ? sensing_.points : 0, -1);
     return search(reach, world);
   }
-  // Every settling world, each sensed condition decided one way or the other: 2^points searches,
-  // each with its loops narrowed the most (recurring_rules.hpp), where the splitting above starts
-  // from the world that decides nothing, whose fixpoint on a large model is the dearest of all
-  // (scouting's cone: measured in checker/README.md). With `helper`, a forked process searches
-  // worlds beside this one (shared_worlds.hpp); the answer is the lowest world with fair states
-  // either way, and its fair states are this process's for the lasso.
+  // Every settling world, each sensed condition decided one way or the other: up to 2^points
+  // searches, each with its loops narrowed the most (recurring_rules.hpp), where the splitting above
+  // starts from the world that decides nothing, whose fixpoint on a large model is the dearest of all
+  // (scouting's cone: measured in checker/README.md). A condition whose deciding narrows nothing but
+  // the rules that decide it stays open (pointsLeftOpen): its two worlds are searched as one, split only
+  // if a loop there decides it both ways. With `helper`, a forked process searches worlds beside
+  // this one (shared_worlds.hpp); the answer is the lowest world with fair states either way, and
+  // its fair states are this process's for the lasso.
   bool violatedOnEveryWorld(const bdd& reach, bool helper) {
-    const std::size_t points = sensing_.points;
-    const std::uint64_t count = std::uint64_t{1} << points;
+    const std::vector<char> open = pointsLeftOpen();
+    opened_ = static_cast<std::uint32_t>(std::count(open.begin(), open.end(), 1));
+    std::vector<std::uint32_t> decided;
+    for (std::uint32_t p = 0; p < open.size(); ++p) {
+      if (open[p] == 0) decided.push_back(p);
+    }
+    if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) {
+      for (std::uint32_t p = 0; p < open.size(); ++p) {
+        if (open[p] != 0) std::fprintf(stderr, "[symbolic] %s left open: its two worlds searched as one\n", sensing_.names[p].c_str());
+      }
+    }
+    const std::uint64_t count = std::uint64_t{1} << decided.size();
     auto searchWorld = [&](std::uint64_t w) {
-      std::vector<std::int8_t> world(points, 0);
-      for (std::size_t p = 0; p < points; ++p) world[p] = static_cast<std::int8_t>((w >> p) & 1);
-      return search(reach, world);  // every point decided: no splitting, found_ set when true
+      std::vector<std::int8_t> world(open.size(), -1);
+      for (std::size_t i = 0; i < decided.size(); ++i) world[decided[i]] = static_cast<std::int8_t>((w >> i) & 1);
+      return search(reach, world);  // found_ set when true
     };
     std::optional<std::uint64_t> foundHere;
     const auto left = product_.timeLeft();
@@ -99,6 +111,7 @@ class SettledSearch {
     return found_ != bddfalse;
   }
   [[nodiscard]] std::uint32_t worlds() const { return worlds_; }
+  [[nodiscard]] std::uint32_t openPoints() const { return opened_; }
   // After a violation: the fair states of the world it was found in, and the rules its loop may use.
   [[nodiscard]] const bdd& fairStates() const { return found_; }
   [[nodiscard]] const std::vector<char>& loopRules() const { return foundAllowed_; }
@@ -106,12 +119,7 @@ class SettledSearch {
  private:
   bool search(const bdd& from, std::vector<std::int8_t>& world) {
     if (++worlds_ > kMaxWorlds) throw GiveUp("more than 512 ways the world may settle had to be searched");
-    std::vector<char> allowed(rules_, 1);
-    for (std::uint32_t r = 0; r < rules_; ++r) allowed[r] = world.empty() || sensing_.agrees(r, world) ? 1 : 0;
-    narrow(allowed, [&](const ir::SensedOutcome& o) {
-      const auto p = pointOf_.find(o.point);
-      return world.empty() || p == pointOf_.end() || world[p->second] < 0 || world[p->second] == static_cast<std::int8_t>(o.holds);
-    });
+    std::vector<char> allowed = loopRulesOf(world, true);
     const bdd z = product_.fairStates(from, allowed);
     if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) std::fprintf(stderr, "[symbolic] world %u: %.0f fair states\n", worlds_, product_.count(z));
     if (z == bddfalse) return false;
@@ -141,14 +149,70 @@ class SettledSearch {
 
   // Leaves out of `allowed` the rules the model the searched one was cut from cannot repeat on a
   // loop that senses as `senses` lets it.
-  void narrow(std::vector<char>& allowed, const std::function<bool(const ir::SensedOutcome&)>& senses) const {
+  void narrow(std::vector<char>& allowed, const std::function<bool(const ir::SensedOutcome&)>& senses, bool say = true) const {
     if (narrowing_ == nullptr) return;
     const std::vector<char> recur = narrowing_->loopRules(senses);
     std::size_t left = 0;
     for (std::uint32_t r = 0; r < rules_; ++r) {
       if (allowed[r] != 0 && recur[r] == 0) allowed[r] = 0, ++left;
     }
-    if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) std::fprintf(stderr, "[symbolic] %zu rules cannot recur on this world's loops\n", left);
+    if (say && std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) std::fprintf(stderr, "[symbolic] %zu rules cannot recur on this world's loops\n", left);
+  }
+
+  // The rules a loop of `world` may take (each point decided 0 or 1, or open: -1): those that
+  // decide its conditions its way, narrowed to those that can recur there.
+  std::vector<char> loopRulesOf(const std::vector<std::int8_t>& world, bool say = false) const {
+    std::vector<char> allowed(rules_, 1);
+    for (std::uint32_t r = 0; r < rules_; ++r) allowed[r] = world.empty() || sensing_.agrees(r, world) ? 1 : 0;
+    narrow(
+        allowed,
+        [&](const ir::SensedOutcome& o) {
+          const auto p = pointOf_.find(o.point);
+          return world.empty() || p == pointOf_.end() || world[p->second] < 0 || world[p->second] == static_cast<std::int8_t>(o.holds);
+        },
+        say);
+    return allowed;
+  }
+
+  // The conditions the search of every world may leave open. A point is open when, on every world
+  // of the other points, the rules a loop may take with it open are exactly those of its two ways
+  // together, and each rule that does not decide it is allowed the same either way: deciding it
+  // narrows nothing but its own rules, so the two worlds' fixpoints work on the same loops but for
+  // those, and one search costs about what each did. Taken greedily, in order, each on the worlds
+  // left. On scouting's mode_agreement cone the first of the four points is open (16 worlds -> 8,
+  // the fixpoints' processor time 245 s -> 136 s); the second changes which deliveries recur, and
+  // leaving it open doubled the searches' cost (checker/README.md).
+  std::vector<char> pointsLeftOpen() const {
+    const std::size_t points = sensing_.points;
+    std::vector<char> open(points, 0);
+    if (narrowing_ == nullptr) return open;  // every point would be open: the dearest search
+    std::vector<char> decides(rules_, 0);
+    for (std::uint32_t p = 0; p < points; ++p) {
+      for (std::uint32_t r = 0; r < rules_; ++r) {
+        decides[r] = std::any_of(sensing_.of[r].begin(), sensing_.of[r].end(), [p](const Sensing::Decision& d) { return d.point == p; }) ? 1 : 0;
+      }
+      bool same = true;
+      for (std::uint64_t w = 0; w < (std::uint64_t{1} << points) && same; ++w) {
+        if ((w >> p & 1) != 0) continue;
+        std::vector<std::int8_t> world(points, 0);
+        for (std::size_t q = 0; q < points; ++q) world[q] = open[q] != 0 ? std::int8_t{-1} : static_cast<std::int8_t>((w >> q) & 1);
+        if (std::any_of(open.begin(), open.end(), [&](char o) { return o != 0; })) {
+          bool repeated = false;  // a world of the open points' other values: already compared
+          for (std::size_t q = 0; q < points && !repeated; ++q) repeated = open[q] != 0 && (w >> q & 1) != 0;
+          if (repeated) continue;
+        }
+        const std::vector<char> no = loopRulesOf(world);
+        world[p] = 1;
+        const std::vector<char> yes = loopRulesOf(world);
+        world[p] = -1;
+        const std::vector<char> either = loopRulesOf(world);
+        for (std::uint32_t r = 0; r < rules_ && same; ++r) {
+          same = decides[r] != 0 ? either[r] == (no[r] | yes[r]) : no[r] == yes[r] && either[r] == no[r];
+        }
+      }
+      open[p] = same ? 1 : 0;
+    }
+    return open;
   }
 
   SymbolicProduct& product_;
@@ -157,6 +221,7 @@ class SettledSearch {
   const LoopNarrowing* narrowing_;
   std::unordered_map<std::string, std::uint32_t> pointOf_;
   std::uint32_t worlds_ = 0;
+  std::uint32_t opened_ = 0;
   bdd found_;
   std::vector<char> foundAllowed_;
 };
@@ -393,6 +458,7 @@ SymbolicOutcome searchHoldingPackage(const ir::Model& model, std::size_t propert
     }
     out.reachable = product.count(reach);
     out.worlds = search->worlds();
+    out.openPoints = search->openPoints();
     out.overApproximated = limits.overApproximate && !exact && !violated;
     if (std::getenv("SEMO_DEBUG_SYMBOLIC") != nullptr) {
       std::fprintf(stderr, "[symbolic] fair states searched in %u worlds: %s, %.1f s\n", out.worlds, violated ? "some" : "none",

@@ -54,6 +54,9 @@ struct SymbolicOutcome {
   // loop found there had to be checked against them (specs/ir.md, "Symbolic search").
   double reachable = 0;
   std::uint32_t worlds = 0;  // settled-world splits searched (1 when none was needed)
+  // With everyWorld: the sensed conditions left open, each world searched deciding them either
+  // way (SettledSearch::pointsLeftOpen in symbolic_liveness.cpp).
+  std::uint32_t openPoints = 0;
   // NoViolation found within the superset of SymbolicLimits::overApproximate (`reachable` counts
   // its product states): the model's invariants were assumed.
   bool overApproximated = false;
