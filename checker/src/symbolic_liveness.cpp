@@ -180,8 +180,8 @@ class SettledSearch {
   // narrows nothing but its own rules, so the two worlds' fixpoints work on the same loops but for
   // those, and one search costs about what each did. Taken greedily, in order, each on the worlds
   // left. On scouting's mode_agreement cone the first of the four points is open (16 worlds -> 8,
-  // the fixpoints' processor time 245 s -> 136 s); the second changes which deliveries recur, and
-  // leaving it open doubled the searches' cost (checker/README.md).
+  // the fixpoints' processor time 238 s -> 121 s); the second changes which rules recur, and
+  // leaving it open anyway took 556 s (checker/README.md).
   std::vector<char> pointsLeftOpen() const {
     const std::size_t points = sensing_.points;
     std::vector<char> open(points, 0);
