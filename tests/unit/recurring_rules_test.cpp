@@ -55,6 +55,25 @@ std::vector<std::string> names(const ir::Model& m, const std::vector<char>& mark
   return out;
 }
 
+// The search of every world with its loops narrowed to the rules that can recur, as the exact
+// cone runs it (on the whole model here: every rule is the cut model's).
+struct NarrowedSearch {
+  explicit NarrowedSearch(const ir::Model& m) : recurring(m), narrowing(recurring, m, everyRule(m)) {
+    limits.narrowing = &narrowing;
+    limits.everyWorld = true;
+  }
+  NarrowedSearch(const NarrowedSearch&) = delete;
+  NarrowedSearch& operator=(const NarrowedSearch&) = delete;
+  static std::vector<std::uint32_t> everyRule(const ir::Model& m) {
+    std::vector<std::uint32_t> identity(m.rules.size());
+    std::iota(identity.begin(), identity.end(), 0u);
+    return identity;
+  }
+  RecurringRules recurring;
+  LoopNarrowing narrowing;
+  detail::SymbolicLimits limits;
+};
+
 TEST(RecurringRules, AStepOnNoCycleAndWhatOnlyItEnablesCannotRecur) {
   const ir::Model m = test::parseIr(kThrowOnce);
   const RecurringRules recurring(m);
@@ -70,13 +89,8 @@ TEST(RecurringRules, AStepOnNoCycleAndWhatOnlyItEnablesCannotRecur) {
 
 TEST(RecurringRules, TheSearchOfEveryWorldProvesWhatOnlyANarrowedLoopCouldBreak) {
   const ir::Model m = test::parseIr(kThrowOnce);
-  std::vector<std::uint32_t> identity(m.rules.size());
-  std::iota(identity.begin(), identity.end(), 0u);
-  const RecurringRules recurring(m);
-  const LoopNarrowing narrowing(recurring, m, identity);
-  detail::SymbolicLimits limits;
-  limits.narrowing = &narrowing;
-  limits.everyWorld = true;
+  const NarrowedSearch narrowed(m);
+  const detail::SymbolicLimits& limits = narrowed.limits;
   // In a dark world b's mode flips for ever (it is 0 again and again); in a bright one it settles
   // at 1 after the one delivery: a violation either way, found with the loops narrowed too.
   const SymbolicOutcome s = detail::decideSymbolically(m, 0, limits);
@@ -98,16 +112,10 @@ TEST(RecurringRules, AConditionWhoseDecidingNarrowsNothingElseIsSearchedBothWays
   text += "property ticks @settled : always eventually {a.pc == 1};\n";
   const ir::Model m = test::parseIr(text);
   const LivenessResult reference = explicitSearch(m);
-  std::vector<std::uint32_t> identity(m.rules.size());
-  std::iota(identity.begin(), identity.end(), 0u);
-  const RecurringRules recurring(m);
-  const LoopNarrowing narrowing(recurring, m, identity);
-  detail::SymbolicLimits limits;
-  limits.narrowing = &narrowing;
-  limits.everyWorld = true;
+  const NarrowedSearch narrowed(m);
   for (std::size_t k = 0; k < m.properties.size(); ++k) {
     SCOPED_TRACE(m.properties[k].name);
-    const SymbolicOutcome s = detail::decideSymbolically(m, k, limits);
+    const SymbolicOutcome s = detail::decideSymbolically(m, k, narrowed.limits);
     EXPECT_EQ(s.openPoints, 1u);  // left, not dark
     EXPECT_EQ(s.kind == SymbolicOutcome::Kind::Violation, reference.properties[k].verdict == Verdict::Violated);
     if (s.kind == SymbolicOutcome::Kind::Violation) {
@@ -133,18 +141,12 @@ TEST(RecurringRules, RandomModelsWithNarrowedLoopsGetTheExplicitVerdicts) {
     const ir::Model m = test::parseIr(text);
     const LivenessResult reference = explicitSearch(m);
     ASSERT_TRUE(reference.complete);
-    const RecurringRules recurring(m);
-    const std::vector<char> all(m.rules.size(), 1);
-    const std::vector<char> recur = recurring.narrow(all);
+    const NarrowedSearch narrowed(m);
+    const std::vector<char> recur = narrowed.recurring.narrow(std::vector<char>(m.rules.size(), 1));
     narrowedRules += static_cast<int>(std::count(recur.begin(), recur.end(), 0));
-    std::vector<std::uint32_t> identity(m.rules.size());
-    std::iota(identity.begin(), identity.end(), 0u);
-    const LoopNarrowing narrowing(recurring, m, identity);
     for (std::size_t k = 0; k < m.properties.size(); ++k) {
       SCOPED_TRACE(m.properties[k].name);
-      detail::SymbolicLimits limits;
-      limits.narrowing = &narrowing;
-      limits.everyWorld = true;
+      detail::SymbolicLimits limits = narrowed.limits;
       const SymbolicOutcome s = detail::decideSymbolically(m, k, limits);
       ASSERT_NE(s.kind, SymbolicOutcome::Kind::GaveUp) << s.why;
       EXPECT_EQ(s.kind == SymbolicOutcome::Kind::Violation, reference.properties[k].verdict == Verdict::Violated);
