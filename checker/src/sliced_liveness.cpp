@@ -72,13 +72,13 @@ SlicedOutcome refineSlices(const CompiledModel& full, const ControlFacts& facts,
       for (ir::VarId v : slice.variables) keep[v] = 1;
       continue;
     }
-    // Slices only grow: once one has been too large to enumerate, the next ones go straight to
-    // the symbolic search.
     if (!enumerate && coneVariables > 0 && static_cast<double>(slice.variables.size()) >= kSliceShareOfCone * static_cast<double>(coneVariables)) {
       out.why = "the slice of " + std::to_string(slice.variables.size()) + " variables holds most of the property's cone of " +
                 std::to_string(coneVariables) + ": the cone is searched instead";
       return out;
     }
+    // Slices only grow: once one has been too large to enumerate, the next ones go straight to
+    // the symbolic search.
     LivenessResult r;
     r.complete = false;
     r.limitReached = "--max-states " + std::to_string(sub.maxStates) + " reached by a smaller slice";

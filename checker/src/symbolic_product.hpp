@@ -172,6 +172,10 @@ class SymbolicProduct {
 
   [[nodiscard]] double count(const bdd& states) const { return bdd_satcountset(states, currentBits_); }
 
+  // A round of the fixpoint below that leaves more than this fraction of its set cuts little: the
+  // strongly fair groups are then taken too.
+  static constexpr double kSlowRound = 0.8;
+
   // The states of `z` on a fair accepting cycle through `z` or leading to one inside it (only
   // those whose automaton state may lie on an accepted loop), the loop using only the rules
   // `allowed` marks (a settled world restricts the loop, not the way to it):
@@ -181,7 +185,6 @@ class SymbolicProduct {
   // there a state that takes it (or the rule is never enabled in the set): a bottom strongly
   // connected component of the set is then a fair accepting loop. Conversely the states of any
   // such loop satisfy all of this, so the set is empty exactly when no such loop exists.
-  static constexpr double kSlowRound = 0.8;
   bdd fairStates(bdd z, const std::vector<char>& allowed) {
     z &= loopAutomaton_;
     std::vector<bdd> acceptance;
