@@ -196,11 +196,9 @@ class SettledSearch {
         if ((w >> p & 1) != 0) continue;
         std::vector<std::int8_t> world(points, 0);
         for (std::size_t q = 0; q < points; ++q) world[q] = open[q] != 0 ? std::int8_t{-1} : static_cast<std::int8_t>((w >> q) & 1);
-        if (std::any_of(open.begin(), open.end(), [&](char o) { return o != 0; })) {
-          bool repeated = false;  // a world of the open points' other values: already compared
-          for (std::size_t q = 0; q < points && !repeated; ++q) repeated = open[q] != 0 && (w >> q & 1) != 0;
-          if (repeated) continue;
-        }
+        bool repeated = false;  // the same world as one with an open point's bit clear: compared then
+        for (std::size_t q = 0; q < points && !repeated; ++q) repeated = open[q] != 0 && (w >> q & 1) != 0;
+        if (repeated) continue;
         const std::vector<char> no = loopRulesOf(world);
         world[p] = 1;
         const std::vector<char> yes = loopRulesOf(world);
