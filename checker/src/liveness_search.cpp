@@ -157,8 +157,7 @@ Outcome decide(const CompiledModel& cm, const ControlFacts& facts, std::size_t k
     }
     spent = whole.states;
   }
-  detail::SlicedOutcome sliced = detail::checkSliced(cm, facts, k, limits, options.sliceStates, options.symbolic, options.walks ? std::optional<std::uint64_t>(options.walkSeed) : std::nullopt, options.symbolicSeconds,
-                                                      options.coneSeconds, options.provenInvariants);
+  detail::SlicedOutcome sliced = detail::checkSliced(cm, facts, k, limits, options);
   LivenessMethod method{true, sliced.keptVariables, sliced.refinements, sliced.states, {}};
   method.symbolic = sliced.symbolic;
   method.symbolicStates = sliced.symbolicStates;

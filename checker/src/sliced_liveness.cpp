@@ -11,8 +11,10 @@
 #include "symbolic_liveness.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <future>
 #include <optional>
 
 #include "semo/checker/fairness.hpp"
@@ -335,26 +337,48 @@ void proveOnCone(const CompiledModel& full, const ControlFacts& facts, std::size
 }
 
 SlicedOutcome checkSliced(const CompiledModel& full, const ControlFacts& facts, std::size_t property, const SearchLimits& limits,
-                          std::uint64_t sliceStates, bool symbolic, std::optional<std::uint64_t> walkSeed, double symbolicSeconds,
-                          double coneSeconds, const std::vector<std::size_t>& provenInvariants) {
+                          const LivenessOptions& options) {
+  const bool symbolic = options.symbolic;
+  const double symbolicSeconds = options.symbolicSeconds;
   std::size_t coneVariables = 0;
-  if (symbolic && coneSeconds > 0) {
+  if (symbolic && options.coneSeconds > 0) {
     const std::vector<char> cone = coneOfInfluence(facts.model, property, facts.neverFires);
     coneVariables = static_cast<std::size_t>(std::count(cone.begin(), cone.end(), 1));
   }
-  SlicedOutcome out = refineSlices(full, facts, property, limits, sliceStates, symbolic, symbolicSeconds, coneVariables);
-  if (walkSeed && out.property.verdict == Verdict::Unknown) walkForLasso(full, property, limits, *walkSeed, out);
+  SlicedOutcome out = refineSlices(full, facts, property, limits, options.sliceStates, symbolic, symbolicSeconds, coneVariables);
   const std::string& name = full.model().properties[property].name;
+  // With the exact cone asked for, it comes straight after the slices: it decides either way (a
+  // proof, or a lasso of the model), where the walks and the hunt can only find a lasso, and cost
+  // their whole time on a property that holds (scouting's mode_agreement: 20 s). They remain for a
+  // cone that gave up (out of time or memory) or whose lasso could not be rebuilt.
+  double coneSpent = 0;
+  if (coneVariables > 0 && out.property.verdict == Verdict::Unknown) {
+    std::vector<std::size_t> invariants = options.provenInvariants;
+    bool waited = true;
+    if (options.provenInvariantsLater.valid()) {
+      const bool ready = options.provenInvariantsLater.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+      if (!ready && limits.onPhase) limits.onPhase("liveness: " + name + ": waiting for the safety proofs, whose invariants bound its exact cone");
+      try {
+        invariants = options.provenInvariantsLater.get();
+      } catch (const std::future_error&) {
+        waited = false;
+        out.why += "; the exact cone: not searched, the safety proofs ended without a result";
+      }
+    }
+    if (waited) {
+      if (limits.onPhase) limits.onPhase("liveness: " + name + ": searching its exact cone, crashes included, on every settling world (symbolically)");
+      const double before = out.symbolicSeconds;
+      proveOnCone(full, facts, property, limits, out, options.coneSeconds, invariants);
+      coneSpent = out.symbolicSeconds - before;
+    }
+  }
+  if (options.walks && out.property.verdict == Verdict::Unknown) walkForLasso(full, property, limits, options.walkSeed, out);
   if (symbolic && out.property.verdict == Verdict::Unknown) {
     if (limits.onPhase) limits.onPhase("liveness: " + name + ": no slice decided; hunting the property's cone for a fair loop (symbolically)");
-    // With the exact cone to follow, the hunt keeps to its own share of the time: slices that
-    // stopped early for the cone leave much of theirs, and the cone finds a violation as well.
-    const double forHunt = coneVariables > 0 ? std::min(symbolicSeconds, out.symbolicSeconds + huntSeconds(symbolicSeconds)) : symbolicSeconds;
-    huntOnCone(full, property, limits, out, &facts, forHunt);
-  }
-  if (symbolic && coneSeconds > 0 && out.property.verdict == Verdict::Unknown) {
-    if (limits.onPhase) limits.onPhase("liveness: " + name + ": searching its exact cone, crashes included, on every settling world (symbolically)");
-    proveOnCone(full, facts, property, limits, out, coneSeconds, provenInvariants);
+    // After the exact cone, the hunt keeps to its own share of the time: slices that stopped early
+    // for the cone leave much of theirs. The cone's own time is not the slices'.
+    const double forHunt = coneVariables > 0 ? std::min(symbolicSeconds, out.symbolicSeconds - coneSpent + huntSeconds(symbolicSeconds)) : symbolicSeconds;
+    huntOnCone(full, property, limits, out, &facts, forHunt + coneSpent);
   }
   return out;
 }

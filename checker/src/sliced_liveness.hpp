@@ -63,14 +63,13 @@ void proveOnCone(const CompiledModel& full, const ControlFacts& facts, std::size
 // `out`'s verdict (walked); otherwise out.why says how many walks found none. Never a proof.
 void walkForLasso(const CompiledModel& full, std::size_t property, const SearchLimits& limits, std::uint64_t seed, SlicedOutcome& out);
 
-// `facts` are the model's control facts (slicing.hpp), computed once for all its properties. When
-// no slice decides, random walks with `walkSeed` hunt a violation (none: no walks); then, with
-// `symbolic`, the hunt on the cone. The symbolic searches share `symbolicSeconds` of processor
-// time (LivenessOptions::symbolicSeconds). Last, with `coneSeconds` > 0, the search of the exact
-// cone (LivenessOptions::coneSeconds), which can prove.
+// `facts` are the model's control facts (slicing.hpp), computed once for all its properties. The
+// slices first, each enumerated within `options.sliceStates` product states, or, with
+// `options.symbolic`, searched symbolically once too large. When no slice decides: with
+// `options.coneSeconds` > 0 the search of the exact cone, which can prove; then, if still
+// undecided, random walks (`options.walks`) and the hunt on the cone, which can only find a lasso.
+// The symbolic searches but the exact cone share `options.symbolicSeconds` of processor time.
 SlicedOutcome checkSliced(const CompiledModel& full, const ControlFacts& facts, std::size_t property, const SearchLimits& limits,
-                          std::uint64_t sliceStates, bool symbolic, std::optional<std::uint64_t> walkSeed = 1,
-                          double symbolicSeconds = LivenessOptions{}.symbolicSeconds, double coneSeconds = 0,
-                          const std::vector<std::size_t>& provenInvariants = {});
+                          const LivenessOptions& options);
 
 }  // namespace semo::checker::detail

@@ -192,6 +192,7 @@ void runIc3(const ir::Model& m, const std::vector<Target>& props, const SmtOptio
     }
     proven.push_back(*ranges.invariant);
     assumed = z3::mk_and(proven);
+    if (options.onRangesHold) options.onRangesHold();
   }
   for (std::size_t n = 0; n < open.size(); ++n) {
     const std::size_t j = open[n];
@@ -245,6 +246,17 @@ SmtResult checkSafetySmt(const ir::Model& model, const SmtOptions& options) {
   // of BMC to depth 5; measured 2026-11-28); and, as they hold initially, they need no proof of
   // their own (below).
   const bool rangesKept = rangesKeptByEveryStep(ctx, enc, params);
+  // Kept by every step and holding initially: an invariant already (1-inductive), which neither
+  // induction nor IC3 need prove again. Scouting's ranges are so; its checks of LTL properties
+  // alone, with no safety property for induction to carry them, spent 15 s of IC3 on them.
+  bool rangesHold = false;
+  if (rangesKept) {
+    z3::solver initially(ctx);
+    initially.set(params);
+    initially.add(enc.initial(0) && !enc.inRange(0));
+    rangesHold = initially.check() == z3::unsat;
+  }
+  if (rangesHold && options.onRangesHold) options.onRangesHold();
   z3::solver bmc(ctx);
   bmc.set(params);
   bmc.add(enc.initial(0));
@@ -313,15 +325,7 @@ SmtResult checkSafetySmt(const ir::Model& model, const SmtOptions& options) {
   // at step k; a candidate that fails is dropped and the rest tried again, so that what remains
   // is inductive as a whole (and so proven).
   std::vector<char> inductiveFlags(props.size() + 1, 0);  // proven by induction: per property, and last the ranges
-  // Ranges kept by every step and holding initially are an invariant (1-inductive) already: neither
-  // induction nor IC3 need prove them again. Scouting's ranges are so; its checks of LTL properties
-  // alone, with no safety property for induction to carry them, spent 15 s of IC3 on them.
-  if (rangesKept) {
-    z3::solver initially(ctx);
-    initially.set(params);
-    initially.add(enc.initial(0) && !enc.inRange(0));
-    if (initially.check() == z3::unsat) inductiveFlags.back() = 1;
-  }
+  inductiveFlags.back() = rangesHold ? 1 : 0;
   const bool unbounded = (options.induction || options.ic3) && !result.rangeError && !result.complete && !open.empty();
   const bool lemmas = unbounded && lemmasInductive(model, options);
   if (lemmas) out.lemmasProven = options.lemmas.size();
@@ -376,6 +380,7 @@ SmtResult checkSafetySmt(const ir::Model& model, const SmtOptions& options) {
       for (std::size_t j : inductive) {
         if (proven[j]) continue;
         proven[j] = 1;
+        if (j == ranges && options.onRangesHold) options.onRangesHold();
         if (j != ranges) {
           result.properties[j].verdict = Verdict::Proven;
           out.proof[j] = SmtProof::Induction;

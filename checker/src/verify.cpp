@@ -5,6 +5,7 @@
 #include <z3.h>
 
 #include <algorithm>
+#include <future>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -127,6 +128,15 @@ void livenessVerdicts(Report& out, const ir::Model& model) {
   }
 }
 
+// The invariants a safety search proved (it lists them first, in the model's order).
+std::vector<std::size_t> provenInvariants(const ir::Model& model, const SearchResult& r) {
+  std::vector<std::size_t> proven;
+  for (std::size_t i = 0; i < model.invariants.size() && i < r.properties.size(); ++i) {
+    if (r.properties[i].verdict == Verdict::Proven && r.properties[i].name == model.invariants[i].name) proven.push_back(i);
+  }
+  return proven;
+}
+
 // The LTL properties: not after a modelling error, never depth-bounded (a lasso needs the whole
 // product, or a slice's), not with --safety-only.
 void runLiveness(Report& out, const ir::Model& model, const VerifyOptions& options, const SearchLimits& limits,
@@ -140,10 +150,7 @@ void runLiveness(Report& out, const ir::Model& model, const VerifyOptions& optio
   if (out.livenessSkipped.empty()) {
     // A small state space, explored whole: each product is searched whole first (exact, fast).
     LivenessOptions tuned = liveness;
-    // The invariants this check proved (the safety results list them in the model's order).
-    for (std::size_t i = 0; i < model.invariants.size() && i < r.properties.size(); ++i) {
-      if (r.properties[i].verdict == Verdict::Proven && r.properties[i].name == model.invariants[i].name) tuned.provenInvariants.push_back(i);
-    }
+    tuned.provenInvariants = provenInvariants(model, r);
     if (tuned.wholeProduct && !tuned.slicesFirst && r.complete && r.states > 0 && r.states <= kWholeFirstReachable) {
       tuned.wholeFirstStates = std::clamp<std::uint64_t>(10 * r.states, kWholeFirstProduct, kWholeFirstProductMost);
     }
@@ -161,9 +168,30 @@ void runSmt(Report& out, const ir::Model& model, const model::MissionModel* miss
   out.engine = Engine::Smt;
   SmtOptions smt = options.smt;
   if (options.limits.maxDepth != UINT32_MAX) smt.maxDepth = options.limits.maxDepth;
+  // The LTL properties on slices of the model, whose products are small whatever the whole state
+  // space: the explicit engine's, never its whole product (too large, or smt would not have run).
+  LivenessOptions liveness = options.liveness;
+  liveness.wholeProduct = false;
+  SearchLimits limits = options.limits;
+  limits.maxDepth = UINT32_MAX;  // BMC's depth, not the slices'
+  // They start beside the safety proofs as soon as Z3 knows every variable stays in its range (a
+  // model with a range error has its LTL properties left unchecked): the slices need nothing else,
+  // and only an exact cone waits for the proven invariants. On scouting the proofs take 8 to 15 s
+  // of one core, which the slices used to wait for.
+  std::future<LivenessResult> beside;  // declared before the promise: a broken one frees the cone first
+  std::promise<std::vector<std::size_t>> invariantsProven;
+  if (!options.safetyOnly && !model.properties.empty()) {
+    smt.onRangesHold = [&] {
+      if (beside.valid()) return;
+      LivenessOptions early = liveness;
+      early.provenInvariantsLater = invariantsProven.get_future().share();
+      beside = std::async(std::launch::async, [&model, &limits, early] { return checkLiveness(model, limits, early); });
+    };
+  }
   out.smt = checkSafetySmt(model, smt);
   const SmtResult& s = *out.smt;
   out.safety = s.search;
+  invariantsProven.set_value(provenInvariants(model, out.safety));
   if (mission != nullptr) {
     const model::MissionModel& m = *mission;
     std::vector<std::int64_t> budget = m.assumptions.crashBudget;  // or the one --crash asks for, as the translation took it
@@ -228,13 +256,12 @@ void runSmt(Report& out, const ir::Model& model, const model::MissionModel* miss
     }
     out.properties.push_back(std::move(v));
   }
-  // The LTL properties on slices of the model, whose products are small whatever the whole state
-  // space: the explicit engine's, never its whole product (too large, or smt would not have run).
-  LivenessOptions liveness = options.liveness;
-  liveness.wholeProduct = false;
-  SearchLimits limits = options.limits;
-  limits.maxDepth = UINT32_MAX;  // BMC's depth, not the slices'
-  runLiveness(out, model, options, limits, liveness);
+  if (beside.valid()) {
+    out.liveness = beside.get();
+    livenessVerdicts(out, model);
+  } else {
+    runLiveness(out, model, options, limits, liveness);
+  }
   bool violated = r.rangeError.has_value() || anyViolated(r.properties) || anyViolated(out.liveness.properties);
   for (const FormationVerdict& f : out.formation) violated = violated || !f.holds();
   bool undecided = !out.liveness.complete;

@@ -3,6 +3,8 @@
 // counterexamples of the same length), and k-induction proves what holds.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "semo/checker/explicit_search.hpp"
 #include "semo/checker/smt_search.hpp"
 #include "ir_support.hpp"
@@ -165,6 +167,45 @@ TEST(SmtSearch, RangesKeptByEveryOutcomeNeedNoProofOfTheirOwn) {
   bool ic3OnRanges = false;
   for (const std::string& p : phases) ic3OnRanges = ic3OnRanges || p == "smt: IC3 on the variables' ranges";
   EXPECT_TRUE(ic3OnRanges);
+}
+
+TEST(SmtSearch, SaysWhenTheRangesHoldSoThatTheLivenessSearchMayStartBesideTheProofs) {
+  // verify.cpp starts the LTL properties' search once no range error can exist. Ranges that hold
+  // initially and are kept by every step are known before BMC's first depth; ranges an induction
+  // proves (together with an invariant), once it has; a model with a range error never says so.
+  std::vector<std::string> events;
+  SmtOptions options;
+  options.maxDepth = 2;
+  options.onPhase = [&events](const std::string& p) { events.push_back(p); };
+  options.onRangesHold = [&events] { events.emplace_back("ranges hold"); };
+  const auto told = [&events] { return std::count(events.begin(), events.end(), "ranges hold"); };
+
+  SmtResult kept = checkSafetySmt(test::parseIr("semo-ir 1;\nvar x : 0..9 = 0;\nrule tick @fair : true -> x' = (x + 1) % 10;\n"
+                                                "invariant small : x < 10;\n"),
+                                  options);
+  EXPECT_EQ(kept.search.properties[0].verdict, Verdict::Proven);
+  ASSERT_EQ(told(), 1);
+  EXPECT_EQ(events.front(), "ranges hold") << "before any BMC depth";
+
+  // From x == 5 (within 0..5, never reached) `jump` leaves the range: not kept by every step, but
+  // inductive together with `low`, at k = 1.
+  events.clear();
+  SmtResult induced = checkSafetySmt(test::parseIr("semo-ir 1;\nvar x : 0..5 = 0;\nrule inc @fair : x < 3 -> x' = x + 1;\n"
+                                                   "rule jump @fair : x == 5 -> x' = x + 1;\ninvariant low : x <= 3;\n"),
+                                     options);
+  EXPECT_FALSE(induced.search.rangeError.has_value());
+  EXPECT_EQ(induced.search.properties[0].verdict, Verdict::Proven);
+  ASSERT_EQ(told(), 1);
+  const auto said = std::find(events.begin(), events.end(), "ranges hold");
+  EXPECT_NE(std::find(events.begin(), said, "smt: k-induction, k = 1 of 3"), said) << "after the induction that proved them";
+
+  events.clear();
+  options.maxDepth = 3;
+  SmtResult error = checkSafetySmt(test::parseIr("semo-ir 1;\nvar x : 0..5 = 0;\nrule inc @fair : x < 7 -> x' = x + 1;\n"
+                                                 "invariant small : x < 100;\n"),
+                                   options);
+  EXPECT_TRUE(error.search.rangeError.has_value());
+  EXPECT_EQ(told(), 0);
 }
 
 TEST(SmtSearch, TruncatingDivisionAsTheExplicitEngine) {

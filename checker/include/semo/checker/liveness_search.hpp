@@ -14,6 +14,7 @@
 // of Emerson and Sistla's annotated quotient structures, kept to what the fairness check needs). The verdict is exact;
 // a lasso comes from the concrete product.
 #include <cstdint>
+#include <future>
 #include <string>
 #include <vector>
 
@@ -89,7 +90,8 @@ struct LivenessOptions {
   // preimages through clusters, 2026-11-28; it was 80 to 130 s, hence three minutes before), and an
   // undecided property ends twice as soon.
   double symbolicSeconds = 90;
-  // When the slices, the walks and the hunt leave a property undecided: the processor time for
+  // When the slices leave a property undecided (before the walks and the hunt, which can only find
+  // a lasso, and then run only if this search gives up): the processor time for
   // searching its exact cone of influence, crashes and discoveries included, on every settling
   // world, each world's loops narrowed to the rules that can recur (sliced_liveness.cpp,
   // proveOnCone). 0 (the default): not tried. It can prove what the slices cannot, at a price:
@@ -101,8 +103,12 @@ struct LivenessOptions {
   // than the reachable states themselves (scouting's mode_agreement: checker/README.md, "The exact
   // cone"); a proof that used them names them.
   std::vector<std::size_t> provenInvariants;
-  // When no slice decides, random walks on the whole model hunt a fair violation first
-  // (lasso_walks.hpp; at most 10 s), before the symbolic hunt and the round-robin one.
+  // Instead, when the search starts beside the safety proofs (verify.cpp): those invariants once
+  // the proofs end. Only an exact cone waits for them, when it starts; a promise broken (the proofs
+  // ended in an error) leaves the cone out.
+  std::shared_future<std::vector<std::size_t>> provenInvariantsLater;
+  // When no slice decides (nor the exact cone, when asked), random walks on the whole model hunt a
+  // fair violation (lasso_walks.hpp; at most 10 s), before the symbolic hunt and the round-robin one.
   bool walks = true;
   std::uint64_t walkSeed = 1;  // the same seed gives the same walks
   // Search the whole product first, within this many product states, and go to the slices only

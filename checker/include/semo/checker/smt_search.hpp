@@ -28,6 +28,12 @@ struct SmtOptions {
   // Told what the engine is doing as each phase starts (a BMC depth, an induction k, an IC3 run),
   // for progress lines; may be empty.
   std::function<void(const std::string&)> onPhase;
+  // Called once, on the calling thread, as soon as the engine knows that no update leaves a
+  // declared range (they hold initially, and every step keeps them, or an induction or IC3 proved
+  // them): no range error exists at any depth, so the model is well formed and what needs only
+  // that (the LTL properties' search, verify.cpp) may start beside the proofs. Not called when a
+  // range error is found or the ranges stay unproven; may be empty.
+  std::function<void()> onRangesHold;
 };
 
 // How a property was decided, beside its verdict.
