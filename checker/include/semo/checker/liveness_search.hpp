@@ -95,7 +95,7 @@ struct LivenessOptions {
   // searching its exact cone of influence, crashes and discoveries included, on every settling
   // world, each world's loops narrowed to the rules that can recur (sliced_liveness.cpp,
   // proveOnCone). 0 (the default): not tried. It can prove what the slices cannot, at a price:
-  // scouting's mode_agreement took 1,724 s of it with its exact reachable states, about 300 s
+  // scouting's mode_agreement took 1,724 s of it with its exact reachable states, about 70 s
   // within the superset its proven invariants bound (checker/README.md).
   double coneSeconds = 0;
   // The model's invariants (indices into ir::Model::invariants) the check has proven. The search
