@@ -469,6 +469,18 @@ std::string canonicalText(const ir::Expr& e, const VarMap& map) { return canon(e
 
 std::vector<ir::VarId> variablesOf(const ir::Rule& r) { return ruleVariables(r); }
 
+std::vector<VarMap> lookalikeSwaps(const ir::Model& model) {
+  std::vector<VarMap> out;
+  if (model.robots.size() < 2) return out;
+  const Finder f(model, SymmetryScope{false, false, std::nullopt});
+  for (const std::vector<std::int32_t>& robots : lookalikes(model, f)) {
+    for (std::size_t i = 0; i + 1 < robots.size(); ++i) {
+      if (std::optional<VarMap> map = f.swap(robots[i], robots[i + 1])) out.push_back(std::move(*map));
+    }
+  }
+  return out;
+}
+
 std::vector<FoundClass> findClasses(const ir::Model& model, const SymmetryScope& scope) {
   std::vector<FoundClass> out;
   if (model.robots.size() < 2) return out;

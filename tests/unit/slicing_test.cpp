@@ -329,6 +329,36 @@ TEST(Slicing, ControlFactsHoldOnEveryReachableStateOfRandomModels) {
   EXPECT_GT(dropped, static_cast<std::size_t>(test::atLeast(20)));
 }
 
+// Three robots that look alike each toggle p until they stop (weakly fair), and p is then set for
+// good. The first slice keeps p alone, and its lasso toggles p by one robot for ever; rebuilt on
+// the model, that robot stops, and the refinement keeps its `go`. The other robots would fail the
+// same way one round each: their `go`s are kept with it (sliced_liveness.cpp, twins), so one
+// refinement decides. A property that names r0 keeps the twins of the robots it does not name.
+TEST(Slicing, ARefinementKeepsTheTwinsOfWhatFailedOnRobotsThatLookAlike) {
+  const std::string model = R"(semo-ir 1;
+robots r0 r1 r2;
+var p : bool = false;
+var r0.go : bool = false @robot(r0);
+var r1.go : bool = false @robot(r1);
+var r2.go : bool = false @robot(r2);
+rule r0_toggle @robot(r0) : !r0.go -> p' = !p;
+rule r1_toggle @robot(r1) : !r1.go -> p' = !p;
+rule r2_toggle @robot(r2) : !r2.go -> p' = !p;
+rule r0_stop @robot(r0) @fair : !r0.go -> r0.go' = true;
+rule r1_stop @robot(r1) @fair : !r1.go -> r1.go' = true;
+rule r2_stop @robot(r2) @fair : !r2.go -> r2.go' = true;
+rule fix @fair : !p -> p' = true;
+)";
+  for (const std::string property : {"eventually always {p}", "(eventually always {p}) || always {r0.go}"}) {
+    SCOPED_TRACE(property);
+    LivenessResult r;
+    EXPECT_EQ(verdict(model + "property settles : " + property + ";\n", true, &r), Verdict::Proven);
+    EXPECT_TRUE(r.methods.at(0).sliced);
+    EXPECT_EQ(r.methods.at(0).refinements, 1u);
+    EXPECT_EQ(r.methods.at(0).keptVariables, 4u);
+  }
+}
+
 // --- random models: the sliced search, the whole product and its quotient agree ------------------
 
 TEST(Slicing, RandomModelsGetTheSameVerdictsAndCheckedLassos) {
