@@ -158,7 +158,11 @@ Outcome decide(const CompiledModel& cm, const ControlFacts& facts, std::size_t k
     spent = whole.states;
   }
   detail::SlicedOutcome sliced = detail::checkSliced(cm, facts, k, limits, options);
-  LivenessMethod method{true, sliced.keptVariables, sliced.refinements, sliced.states, {}};
+  LivenessMethod method;
+  method.sliced = true;
+  method.keptVariables = sliced.keptVariables;
+  method.refinements = sliced.refinements;
+  method.states = sliced.states;
   method.symbolic = sliced.symbolic;
   method.symbolicStates = sliced.symbolicStates;
   method.hunted = sliced.hunted;
@@ -213,7 +217,9 @@ Outcome decide(const CompiledModel& cm, const ControlFacts& facts, std::size_t k
   Outcome whole = checkProperty(cm, prop, limits, start, symmetry);
   whole.states += sliced.states;
   whole.transitions += sliced.transitions;
-  whole.method = {false, 0, 0, whole.states, sliced.why};
+  whole.method = LivenessMethod{};
+  whole.method.states = whole.states;
+  whole.method.slicingGaveUp = sliced.why;
   return whole;
 }
 

@@ -39,6 +39,13 @@ void PrintTo(const Input& in, std::ostream* os) { *os << in.name; }
 
 std::vector<Input> inputs() {
   std::vector<Input> out;
+  auto add = [&out](std::string name, std::string args, bool mission = true) {
+    Input in;
+    in.name = std::move(name);
+    in.args = std::move(args);
+    in.mission = mission;
+    out.push_back(std::move(in));
+  };
   for (const char* e : {"chase/chase", "deployment/deployment", "swarm/swarm3", "swarm/swarm10", "patrol/patrol"}) {
     const std::string path = e;
     const std::string folder = path.substr(0, path.find('/'));
@@ -49,24 +56,24 @@ std::vector<Input> inputs() {
   for (const auto& entry : fs::directory_iterator(SEMO_SOURCE_DIR "/specs/defects")) {
     if (entry.path().extension() != ".semo") continue;
     const std::string stem = entry.path().stem().string();
-    out.push_back({"defect_" + stem, "specs/defects/" + stem + ".semo --strategy specs/defects/strategy.xml"});
+    add("defect_" + stem, "specs/defects/" + stem + ".semo --strategy specs/defects/strategy.xml");
   }
-  out.push_back({"defect_leader_timeout_short", "specs/defects/leader_timeout.semo --strategy specs/defects/leader_timeout_short.xml"});
-  out.push_back({"defect_leader_timeout_ok", "specs/defects/leader_timeout.semo --strategy specs/defects/leader_timeout_ok.xml"});
+  add("defect_leader_timeout_short", "specs/defects/leader_timeout.semo --strategy specs/defects/leader_timeout_short.xml");
+  add("defect_leader_timeout_ok", "specs/defects/leader_timeout.semo --strategy specs/defects/leader_timeout_ok.xml");
   for (const auto& entry : fs::directory_iterator(SEMO_SOURCE_DIR "/specs/defects/liveness")) {
     if (entry.path().extension() != ".semo") continue;
     const std::string stem = entry.path().stem().string();
-    out.push_back({"liveness_" + stem, "specs/defects/liveness/" + stem + ".semo --strategy specs/defects/liveness/strategy.xml"});
+    add("liveness_" + stem, "specs/defects/liveness/" + stem + ".semo --strategy specs/defects/liveness/strategy.xml");
   }
-  out.push_back({"liveness_jammed_recall_reliable", "specs/defects/liveness/jammed_recall.semo --strategy specs/defects/liveness/jammed_recall_reliable.xml"});
-  out.push_back({"liveness_stuck_gossip_reliable", "specs/defects/liveness/stuck_gossip.semo --strategy specs/defects/liveness/stuck_gossip_reliable.xml"});
-  out.push_back({"liveness_orphaned_relay_formation", "specs/defects/liveness/orphaned_relay.semo --strategy specs/defects/liveness/orphaned_relay_formation.xml"});
-  out.push_back({"liveness_handed_watch_release", "specs/defects/liveness/handed_watch.semo --strategy specs/defects/liveness/handed_watch_release.xml"});
-  out.push_back({"liveness_handed_watch_keep", "specs/defects/liveness/handed_watch.semo --strategy specs/defects/liveness/handed_watch_keep.xml"});
-  out.push_back({"liveness_orphaned_relay_timeout", "specs/defects/liveness/orphaned_relay.semo --strategy specs/defects/liveness/orphaned_relay_timeout.xml"});
+  add("liveness_jammed_recall_reliable", "specs/defects/liveness/jammed_recall.semo --strategy specs/defects/liveness/jammed_recall_reliable.xml");
+  add("liveness_stuck_gossip_reliable", "specs/defects/liveness/stuck_gossip.semo --strategy specs/defects/liveness/stuck_gossip_reliable.xml");
+  add("liveness_orphaned_relay_formation", "specs/defects/liveness/orphaned_relay.semo --strategy specs/defects/liveness/orphaned_relay_formation.xml");
+  add("liveness_handed_watch_release", "specs/defects/liveness/handed_watch.semo --strategy specs/defects/liveness/handed_watch_release.xml");
+  add("liveness_handed_watch_keep", "specs/defects/liveness/handed_watch.semo --strategy specs/defects/liveness/handed_watch_keep.xml");
+  add("liveness_orphaned_relay_timeout", "specs/defects/liveness/orphaned_relay.semo --strategy specs/defects/liveness/orphaned_relay_timeout.xml");
   for (const auto& entry : fs::directory_iterator(SEMO_SOURCE_DIR "/tests/e2e/ir")) {
     if (entry.path().extension() != ".ir") continue;
-    out.push_back({"ir_" + entry.path().stem().string(), "tests/e2e/ir/" + entry.path().filename().string(), false});
+    add("ir_" + entry.path().stem().string(), "tests/e2e/ir/" + entry.path().filename().string(), false);
   }
   std::sort(out.begin(), out.end(), [](const Input& a, const Input& b) { return a.name < b.name; });
   return out;
