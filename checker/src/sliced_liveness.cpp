@@ -53,50 +53,61 @@ constexpr double kSliceShareOfCone = 0.5;
 
 // A lasso that failed on one robot mostly has a twin on each robot that looks alike, which fails
 // the same way one round later: scouting's light watch needed ev3_0's Watch, then ev3_1's; 7 of
-// its 18 refinements were the twin of an earlier one. So a refinement also keeps each named variable's images under the
-// swaps of lookalike robots (symmetry_finder.hpp):
-// - of robots the property does not name, always: the light watch's re-election names the
+// its 18 refinements were the twin of an earlier one. So a refinement also keeps each variable it
+// names on the robots that look alike (lookalikeClasses, symmetry_finder.hpp):
+// - on robots the property does not name, always: the light watch's re-election names the
 //   burgers, and with the ev3s' twins it took 13 rounds and 10.8 s instead of 19 and 17.6 s, on
 //   the same slice of 29 variables;
-// - of robots it names (a swap that maps its own variables onto themselves), only once the slices
+// - on robots it names the same way (their same variables are its own), only once the slices
 //   are searched symbolically, where a round costs seconds, not milliseconds. In the first, cheap
 //   rounds they changed which lassos were found, and the light watch then needed 40 variables
 //   (24.9 s). From the symbolic rounds on, they take mode_agreement's slices to half its cone in
 //   6 rounds and 8 s instead of 9 and 24 s, and the light watch is proven on 30 variables.
 // The robots need not be interchangeable (scouting's are not: its elections tell them apart):
 // which variables a slice keeps only decides how soon it decides, never what (slicing.hpp).
-struct TwinSwaps {
-  std::vector<VarMap> apart;   // of robots the property does not name
-  std::vector<VarMap> named;   // of robots it names, its own variables onto themselves
-};
-TwinSwaps twinSwaps(const ir::Model& model, const std::vector<ir::VarId>& own) {
-  std::vector<char> isOwn(model.variables.size(), 0);
-  for (ir::VarId v : own) isOwn[v] = 1;
-  TwinSwaps out;
-  for (VarMap& swap : lookalikeSwaps(model)) {
-    if (std::all_of(own.begin(), own.end(), [&](ir::VarId v) { return swap[v] == v; })) {
-      out.apart.push_back(std::move(swap));
-    } else if (std::all_of(own.begin(), own.end(), [&](ir::VarId v) { return isOwn[swap[v]] != 0; })) {
-      out.named.push_back(std::move(swap));
-    }
-  }
-  return out;
-}
-
-// Keeps the images of `added` under the swaps, and theirs, to a fixpoint.
-void keepTwins(const TwinSwaps& twins, bool named, std::vector<char>& keep, std::vector<ir::VarId> added) {
-  while (!added.empty()) {
-    const ir::VarId v = added.back();
-    added.pop_back();
-    for (const std::vector<VarMap>* swaps : {&twins.apart, &twins.named}) {
-      if (swaps == &twins.named && !named) continue;
-      for (const VarMap& swap : *swaps) {
-        const ir::VarId twin = swap[v];
-        if (keep[twin] == 0) keep[twin] = 1, added.push_back(twin);
+class Twins {
+ public:
+  Twins(const ir::Model& model, const std::vector<ir::VarId>& own)
+      : classes_(lookalikeClasses(model)), place_(model.variables.size()) {
+    std::vector<char> isOwn(model.variables.size(), 0);
+    for (ir::VarId v : own) isOwn[v] = 1;
+    named_.resize(classes_.size());
+    for (std::uint32_t c = 0; c < classes_.size(); ++c) {
+      const LookalikeClass& k = classes_[c];
+      named_[c].resize(k.robots.size());
+      for (std::uint32_t i = 0; i < k.robots.size(); ++i) {
+        for (std::uint32_t j = 0; j < k.blocks[i].size(); ++j) {
+          place_[k.blocks[i][j]] = Place{c, i, j};
+          if (isOwn[k.blocks[i][j]] != 0) named_[c][i].push_back(j);
+        }
       }
     }
   }
-}
+
+  // Keeps v's twins: on every robot of its class that the property does not name, when v's robot is
+  // one of them; with `named`, when its robot is named, on every robot named the same way (the
+  // same places of their blocks hold the property's own variables).
+  void keep(ir::VarId v, bool named, std::vector<char>& keep) const {
+    const Place& p = place_[v];
+    if (p.cls == kNone) return;
+    const std::vector<std::uint32_t>& how = named_[p.cls][p.robot];
+    if (!how.empty() && !named) return;
+    const LookalikeClass& k = classes_[p.cls];
+    for (std::uint32_t i = 0; i < k.robots.size(); ++i) {
+      if (named_[p.cls][i] == how) keep[k.blocks[i][p.at]] = 1;
+    }
+  }
+
+ private:
+  static constexpr std::uint32_t kNone = UINT32_MAX;
+  struct Place {
+    std::uint32_t cls = kNone, robot = 0, at = 0;
+  };
+  std::vector<LookalikeClass> classes_;
+  std::vector<Place> place_;
+  // Per class and robot: the places of its block that hold the property's own variables.
+  std::vector<std::vector<std::vector<std::uint32_t>>> named_;
+};
 
 SlicedOutcome refineSlices(const CompiledModel& full, const ControlFacts& facts, std::size_t property, const SearchLimits& limits,
                            std::uint64_t sliceStates, bool symbolic, double symbolicBudget, std::size_t coneVariables) {
@@ -115,12 +126,12 @@ SlicedOutcome refineSlices(const CompiledModel& full, const ControlFacts& facts,
   plain.slice = true;
   double symbolicSeconds = 0;
   bool enumerate = true;
-  std::optional<TwinSwaps> twins;  // found on the first slice: the property's own variables
+  std::optional<Twins> twins;  // found on the first slice: the property's own variables
   for (std::uint32_t round = 0; round < kMaxRefinements; ++round) {
     Slice slice = sliceModel(model, property, keep, facts.neverFires);
     out.keptVariables = slice.variables.size();
     out.refinements = round;
-    if (!twins) twins = twinSwaps(model, slice.variables);
+    if (!twins) twins.emplace(model, slice.variables);
     if (slice.tooCoarse) {
       for (ir::VarId v : slice.coarseReads) keep[v] = 1;
       for (ir::VarId v : slice.variables) keep[v] = 1;
@@ -220,7 +231,7 @@ SlicedOutcome refineSlices(const CompiledModel& full, const ControlFacts& facts,
       if (concretizer.refine()[v] && !keep[v]) keep[v] = 1, added.push_back(static_cast<ir::VarId>(v));
     }
     const bool grew = !added.empty();
-    keepTwins(*twins, !enumerate, keep, std::move(added));
+    for (ir::VarId v : added) twins->keep(v, !enumerate, keep);
     // A slice too large to enumerate, or one that cannot grow, may be the last: the whole model
     // is searched where the slice's loop is first. A larger slice is then searched symbolically.
     const bool last = filled || !enumerate || !grew;

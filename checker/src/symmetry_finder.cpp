@@ -469,16 +469,41 @@ std::string canonicalText(const ir::Expr& e, const VarMap& map) { return canon(e
 
 std::vector<ir::VarId> variablesOf(const ir::Rule& r) { return ruleVariables(r); }
 
-std::vector<VarMap> lookalikeSwaps(const ir::Model& model) {
-  std::vector<VarMap> out;
-  if (model.robots.size() < 2) return out;
-  const Finder f(model, SymmetryScope{false, false, std::nullopt});
-  for (const std::vector<std::int32_t>& robots : lookalikes(model, f)) {
-    for (std::size_t i = 0; i + 1 < robots.size(); ++i) {
-      if (std::optional<VarMap> map = f.swap(robots[i], robots[i + 1])) out.push_back(std::move(*map));
+std::vector<LookalikeClass> lookalikeClasses(const ir::Model& model) {
+  std::unordered_map<std::string, std::int32_t> robotIndex;
+  for (std::size_t r = 0; r < model.robots.size(); ++r) robotIndex.emplace(model.robots[r], static_cast<std::int32_t>(r));
+  // Each variable that names one robot, by its name with the robot's left out, range and value.
+  std::vector<std::vector<std::pair<std::string, ir::VarId>>> own(model.robots.size());
+  for (ir::VarId v = 0; v < model.variables.size(); ++v) {
+    std::vector<std::string> parts = components(model.variables[v].name);
+    std::int32_t robot = -1;
+    bool two = false;
+    for (std::string& p : parts) {
+      auto it = robotIndex.find(p);
+      if (it == robotIndex.end()) continue;
+      two = two || (robot >= 0 && robot != it->second);
+      robot = it->second;
+      p = "*";
     }
+    if (robot < 0 || two) continue;
+    const ir::Variable& x = model.variables[v];
+    own[static_cast<std::size_t>(robot)].emplace_back(join(parts) + ":" + std::to_string(x.min) + ".." + std::to_string(x.max) + "=" + std::to_string(x.init), v);
   }
-  return out;
+  std::map<std::vector<std::string>, std::size_t> bySignature;
+  std::vector<LookalikeClass> classes;
+  for (std::size_t r = 0; r < own.size(); ++r) {
+    if (own[r].empty()) continue;
+    std::sort(own[r].begin(), own[r].end());
+    std::vector<std::string> signature;
+    std::vector<ir::VarId> block;
+    for (auto& [key, v] : own[r]) signature.push_back(std::move(key)), block.push_back(v);
+    auto [it, added] = bySignature.emplace(std::move(signature), classes.size());
+    if (added) classes.emplace_back();
+    classes[it->second].robots.push_back(static_cast<std::int32_t>(r));
+    classes[it->second].blocks.push_back(std::move(block));
+  }
+  std::erase_if(classes, [](const LookalikeClass& c) { return c.robots.size() < 2; });
+  return classes;
 }
 
 std::vector<FoundClass> findClasses(const ir::Model& model, const SymmetryScope& scope) {

@@ -22,12 +22,17 @@ struct FoundClass {
 
 std::vector<FoundClass> findClasses(const ir::Model& model, const SymmetryScope& scope = {});
 
-// Swaps of robots that look alike (the same variables, by name, range and initial value), each
-// swap of two neighbours of a class of lookalikes as a permutation of the variables, whether or
-// not the model is the same under it: a hint of where a robot's twin keeps its values, not a
-// symmetry (sliced_liveness.cpp refines slices by it; scouting's robots look alike in pairs but
-// their elections tell them apart).
-std::vector<VarMap> lookalikeSwaps(const ir::Model& model);
+// Robots that look alike: the same variables by name (the robot's own name left out), range and
+// initial value, whether or not the model is the same when they are swapped. A hint of where a
+// robot's twin keeps its values, not a symmetry (sliced_liveness.cpp refines slices by it;
+// scouting's robots look alike in pairs, but their elections tell them apart). blocks[i][j]: the
+// j-th variable of robots[i], the same for every robot of the class but for the robot's name.
+// Variables that name two robots belong to no block. Linear in the model's variables.
+struct LookalikeClass {
+  std::vector<std::int32_t> robots;
+  std::vector<std::vector<ir::VarId>> blocks;
+};
+std::vector<LookalikeClass> lookalikeClasses(const ir::Model& model);
 
 // The variables a rule reads or writes.
 std::vector<ir::VarId> variablesOf(const ir::Rule& r);
