@@ -56,11 +56,34 @@ function(verdicts json out)
   set(${out} "${found}" PARENT_SCOPE)
 endfunction()
 
+# Both runs end with a report (0 proven, 1 violated, 3 partial: with --safety-only, a model with LTL
+# properties is partial), never with an error.
+function(expect_report)
+  foreach(code explicit_code smt_code)
+    if(NOT ${code} MATCHES "^[013]$")
+      message(FATAL_ERROR "smt_agreement: ${code} = ${${code}}")
+    endif()
+  endforeach()
+endfunction()
+
+# The safety properties both runs report: the same, and at least one (else nothing was compared).
+function(same_properties)
+  verdicts("${explicit_json}" explicit_verdicts)
+  verdicts("${smt_json}" smt_verdicts)
+  string(REGEX REPLACE "=[^;]*" "" explicit_names "${explicit_verdicts}")
+  string(REGEX REPLACE "=[^;]*" "" smt_names "${smt_verdicts}")
+  if(explicit_names STREQUAL "" OR NOT explicit_names STREQUAL smt_names)
+    message(FATAL_ERROR "smt_agreement: the engines report different safety properties, or none: explicit [${explicit_names}], smt [${smt_names}]")
+  endif()
+endfunction()
+
 if(DEPTH STREQUAL "full")
   execute_process(COMMAND ${EXE} check ${model_args} --json --no-symmetry --safety-only
                   OUTPUT_VARIABLE explicit_json RESULT_VARIABLE explicit_code)
   execute_process(COMMAND ${EXE} check ${model_args} --json --engine smt --safety-only
                   OUTPUT_VARIABLE smt_json RESULT_VARIABLE smt_code)
+  expect_report()
+  same_properties()
   verdicts("${explicit_json}" explicit_verdicts)
   verdicts("${smt_json}" smt_verdicts)
   if(NOT explicit_verdicts STREQUAL smt_verdicts OR smt_verdicts MATCHES "=unknown")
@@ -74,11 +97,8 @@ execute_process(COMMAND ${EXE} check ${model_args} --json --no-symmetry --safety
                 OUTPUT_VARIABLE explicit_json RESULT_VARIABLE explicit_code)
 execute_process(COMMAND ${EXE} check ${model_args} --json --engine smt --max-depth ${DEPTH} --bmc-only --safety-only
                 OUTPUT_VARIABLE smt_json RESULT_VARIABLE smt_code)
-foreach(code explicit_code smt_code)
-  if(NOT ${code} MATCHES "^[013]$")
-    message(FATAL_ERROR "smt_agreement: ${code} = ${${code}}")
-  endif()
-endforeach()
+expect_report()
+same_properties()
 violations("${explicit_json}" explicit_found)
 violations("${smt_json}" smt_found)
 if(NOT explicit_found STREQUAL smt_found)
