@@ -43,7 +43,7 @@ fi
 # a clean build here parses the big headers (nlohmann/json, fmt, gtest, Z3) a few dozen times instead
 # of two hundred, and takes 9 minutes of processor time instead of 15. Every source still compiles
 # on its own (a developer's `cmake --build` without it rebuilds one file per change), and file-local
-# names must differ between the files of a target (README, "Setup, build and run").
+# names must differ between the files of a target (docs/development.md, "Builds").
 build() {  # build DIR [cmake options...]
   local dir="$1"; shift
   cmake -S . -B "$dir" -DCMAKE_UNITY_BUILD=ON "$@" > "$dir.configure.log" 2>&1 || { cat "$dir.configure.log"; exit 1; }
@@ -58,15 +58,12 @@ case "$mode" in
     build build -DCMAKE_BUILD_TYPE=Release -DSEMO_BUILD_TESTS=OFF
     step "lint: the paper's scouting mission"
     ./build/tools/semo-verify lint "${scouting[@]}"
-    # The whole scouting model is beyond the explicit engine: --engine auto sees that within its
-    # budget and proves the safety properties with Z3 (BMC, k-induction, IC3); the LTL properties
-    # are decided on slices (enumerated, or symbolically when large). mode_agreement is proven
-    # only on its exact cone, crashes included (--cone-seconds): about 70 s of processor time (late on
-    # 2026-12-03) here, and machines differ by up to half, but 6000 costs nothing: a proof ends when
-    # it is done.
-    step "check: every property of the mission (--engine auto --cone-seconds 6000)"
+    # The plain command: with no options, check chooses its engines (the explicit search within its
+    # budget, else Z3 for the safety properties; the LTL properties on slices, then on their exact
+    # cones), and decides every property of the mission.
+    step "check: every property of the mission"
     checked=0
-    ./build/tools/semo-verify check "${scouting[@]}" --engine auto --cone-seconds 6000 || checked=$?
+    ./build/tools/semo-verify check "${scouting[@]}" || checked=$?
     # Then each robot's dataflow task graph: every scenario consistent and deadlock free, with its
     # schedule, period and buffer bounds proven (Z3).
     step "sdf: each robot's task graph"

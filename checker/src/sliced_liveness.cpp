@@ -412,10 +412,13 @@ SlicedOutcome checkSliced(const CompiledModel& full, const ControlFacts& facts, 
   }
   SlicedOutcome out = refineSlices(full, facts, property, limits, options.sliceStates, symbolic, symbolicSeconds, coneVariables);
   const std::string& name = full.model().properties[property].name;
-  // With the exact cone asked for, it comes straight after the slices: it decides either way (a
-  // proof, or a lasso of the model), where the walks and the hunt can only find a lasso, and cost
-  // their whole time on a property that holds (scouting's mode_agreement: 20 s). They remain for a
-  // cone that gave up (out of time or memory) or whose lasso could not be rebuilt.
+  // The random walks first: a lasso they can find turns up within a second or two, where the exact
+  // cone may spend its whole time before it finds the same one, and they cost at most kWalkSeconds
+  // on a property that holds. The exact cone, asked for, comes next: it decides either
+  // way (a proof, or a lasso of the model), where the hunt can only find a lasso and costs its whole
+  // time on a property that holds. The hunt remains for a cone that gave up (out of time or memory)
+  // or whose lasso could not be rebuilt.
+  if (options.walks && out.property.verdict == Verdict::Unknown) walkForLasso(full, property, limits, options.walkSeed, out);
   double coneSpent = 0;
   if (coneVariables > 0 && out.property.verdict == Verdict::Unknown) {
     std::vector<std::size_t> invariants = options.provenInvariants;
@@ -437,7 +440,6 @@ SlicedOutcome checkSliced(const CompiledModel& full, const ControlFacts& facts, 
       coneSpent = out.symbolicSeconds - before;
     }
   }
-  if (options.walks && out.property.verdict == Verdict::Unknown) walkForLasso(full, property, limits, options.walkSeed, out);
   if (symbolic && out.property.verdict == Verdict::Unknown) {
     if (limits.onPhase) limits.onPhase("liveness: " + name + ": no slice decided; hunting the property's cone for a fair loop (symbolically)");
     // After the exact cone, the hunt keeps to its own share of the time: slices that stopped early

@@ -334,6 +334,16 @@ void countingVerdicts(Report& out, const ir::Model& model, bool safetyOnly) {
   out.exitCode = countingDecides(c, safetyOnly) && (!safetyOnly || model.properties.empty()) ? 0 : 3;
 }
 
+// 2000000 as "2,000,000".
+std::string countText(std::uint64_t n) {
+  std::string digits = std::to_string(n), out;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
 void runExplicit(Report& out, const ir::Model& model, const model::MissionModel* mission, const VerifyOptions& options,
                  const SourceManager& sources) {
   const bool automatic = options.engine == Engine::Auto;
@@ -361,6 +371,7 @@ void runExplicit(Report& out, const ir::Model& model, const model::MissionModel*
       counted = "the counter abstraction does not apply (" + c.why + "), so ";
     }
   }
+  const bool ltl = !options.safetyOnly && !model.properties.empty();
   SearchLimits limits = options.limits;
   if (automatic) {
     // The probe is never depth-bounded: a bound is for BMC, should smt be chosen.
@@ -373,15 +384,16 @@ void runExplicit(Report& out, const ir::Model& model, const model::MissionModel*
   if (automatic) {
     const bool found = r.rangeError.has_value() || anyViolated(r.properties);
     if (!r.complete && !found && !r.depthBounded) {
-      out.engineReason = counted + "the explicit search did not cover the state space within its budget of " + std::to_string(limits.maxStates) +
-                         " states (stopped after " + std::to_string(r.states) + "), so smt; the LTL properties on slices of the model " +
-                         "(cone of influence, refined by counterexamples), never on the whole product";
+      out.engineReason = counted + "the explicit search did not cover the state space within its budget of " + countText(limits.maxStates) +
+                         " states, so smt" + (ltl ? "; the LTL properties on slices of the model (cone of influence, refined by counterexamples), " +
+                                                        std::string("never on the whole product")
+                                                  : std::string());
       runSmt(out, model, mission, options, sources);
       return;
     }
-    out.engineReason = counted + (found ? "explicit search found a violation within its budget of " + std::to_string(kAutoStateBudget) + " states"
-                                        : "the state space fits the explicit engine's budget of " + std::to_string(kAutoStateBudget) + " states");
-    if (options.liveness.slicing) out.engineReason += "; the LTL properties on slices of the model first, on the whole product where no slice decides";
+    out.engineReason = counted + (found ? "the explicit search found a violation within its budget of " + countText(kAutoStateBudget) + " states"
+                                        : "the state space fits the explicit engine's budget of " + countText(kAutoStateBudget) + " states");
+    if (ltl && options.liveness.slicing) out.engineReason += "; the LTL properties on slices of the model first, on the whole product where no slice decides";
     limits.maxStates = options.limits.maxStates;  // the liveness products get the usual limit
   }
   explicitSafetyVerdicts(out);

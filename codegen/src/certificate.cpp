@@ -142,6 +142,10 @@ std::string certificateJson(const model::MissionModel& /*mission*/, const Transl
   OrderedJson how = {{"engine", options.engine}, {"maxStates", options.maxStates}, {"symmetry", options.symmetry}, {"safetyOnly", options.safetyOnly},
               {"bmcOnly", options.bmcOnly}, {"proofTimeoutMs", options.proofTimeoutMs}};
   if (options.maxDepth != UINT32_MAX) how["maxDepth"] = options.maxDepth;
+  how["liveness"] = {{"slicing", options.slicing},         {"slicesFirst", options.slicesFirst},
+                     {"sliceStates", options.sliceStates}, {"symbolic", options.symbolic},
+                     {"symbolicSeconds", options.symbolicSeconds}, {"coneSeconds", options.coneSeconds},
+                     {"walks", options.walks},             {"seed", options.walkSeed}};
   root["verifyOptions"] = how;
   root["model"] = {{"fingerprint", report.modelFingerprint},
                    {"variables", translation.model.variables.size()},

@@ -81,6 +81,17 @@ std::optional<Certificate> readCertificate(const SourceManager& sources, FileId 
     c.verify.safetyOnly = how.at("safetyOnly").get<bool>();
     c.verify.bmcOnly = how.at("bmcOnly").get<bool>();
     c.verify.proofTimeoutMs = how.at("proofTimeoutMs").get<unsigned>();
+    if (how.contains("liveness")) {  // absent from a certificate of an earlier version: the defaults then
+      const Json& l = how.at("liveness");
+      c.verify.slicing = l.at("slicing").get<bool>();
+      c.verify.slicesFirst = l.at("slicesFirst").get<bool>();
+      c.verify.sliceStates = l.at("sliceStates").get<std::uint64_t>();
+      c.verify.symbolic = l.at("symbolic").get<bool>();
+      c.verify.symbolicSeconds = l.at("symbolicSeconds").get<double>();
+      c.verify.coneSeconds = l.at("coneSeconds").get<double>();
+      c.verify.walks = l.at("walks").get<bool>();
+      c.verify.walkSeed = l.at("seed").get<std::uint64_t>();
+    }
   } catch (const Json::exception& e) {
     return bad(e.what());
   }
@@ -281,6 +292,14 @@ CertifyReport certify(const std::string& dir, const CertifyOptions& options, Sou
       vo.safetyOnly = how.safetyOnly;
       vo.smt.induction = vo.smt.ic3 = !how.bmcOnly;
       vo.bounds.timeoutMs = how.proofTimeoutMs;
+      vo.liveness.slicing = how.slicing;
+      vo.liveness.slicesFirst = how.slicesFirst;
+      vo.liveness.sliceStates = how.sliceStates;
+      vo.liveness.symbolic = how.symbolic;
+      vo.liveness.symbolicSeconds = how.symbolicSeconds;
+      vo.liveness.coneSeconds = how.coneSeconds;
+      vo.liveness.walks = how.walks;
+      vo.liveness.walkSeed = how.walkSeed;
       vo.taskGraphs = true;
       vo.crashOverride = c->crash;
       vo.smt.lemmas = translation->lowering.countDefinitions;  // as emit verifies: the counts' definitions, for smt and counting

@@ -9,6 +9,11 @@ namespace semo {
 
 namespace {
 
+std::string& programNameStore() {
+  static std::string name = "semo-verify";
+  return name;
+}
+
 const char* severityName(Severity s) {
   switch (s) {
     case Severity::Note: return "note";
@@ -53,6 +58,10 @@ Diagnostic& DiagnosticEngine::warning(SourceRange range, std::string message) {
   return diagnostics_.back();
 }
 
+void setProgramName(std::string name) { programNameStore() = std::move(name); }
+
+const std::string& programName() { return programNameStore(); }
+
 void DiagnosticEngine::note(Diagnostic& to, SourceRange range, std::string message) {
   to.notes.push_back({Severity::Note, range, std::move(message), {}});
 }
@@ -66,7 +75,7 @@ void DiagnosticEngine::formatOne(std::string& out, const Diagnostic& d) const {
     }
     out += ": ";
   } else {
-    out += "semo-verify: ";
+    out += programName() + ": ";
   }
   out += severityName(d.severity);
   out += ": ";

@@ -47,6 +47,8 @@ constexpr const char* kUsage = R"(options:
   --loss P                lose this share of the messages the model lets be lost, on receipt
   --seed N                seed of its random choices (default 1)
   --status-period T       how often it tells its peers where it is (default 100ms)
+  --report-every T        how often it prints how it is: time, mode, leaders, live peers,
+                          packets (default 5s; 0: only at the end)
   --peer-timeout T        a peer silent this long is taken as crashed (default 3s)
   --trace FILE            write its trace (semo-simtrace JSON) at the end
   --quiet                 print nothing but errors
@@ -77,7 +79,7 @@ struct Arguments {
   std::optional<UdpEndpoint> multicast;
   std::string interface = "0.0.0.0";
   std::string world, trace;
-  double duration = 60, statusPeriod = 0.1, peerTimeout = 3, loss = 0;
+  double duration = 60, statusPeriod = 0.1, peerTimeout = 3, loss = 0, reportEvery = 5;
   std::optional<double> crashAt;
   std::uint64_t seed = 1;
   bool keepRunning = false, quiet = false, help = false;
@@ -138,6 +140,8 @@ std::string parse(int argc, char** argv, Arguments& a) {
       if (!time(a.duration) || a.duration <= 0) return "--duration: expected a time such as 60s, 500ms or 2min";
     } else if (arg == "--status-period") {
       if (!time(a.statusPeriod) || a.statusPeriod <= 0) return "--status-period: expected a time such as 100ms";
+    } else if (arg == "--report-every") {
+      if (!time(a.reportEvery)) return "--report-every: expected a time such as 5s (0: only at the end)";
     } else if (arg == "--peer-timeout") {
       if (!time(a.peerTimeout) || a.peerTimeout <= 0) return "--peer-timeout: expected a time such as 3s";
     } else if (arg == "--crash-at") {
@@ -160,6 +164,34 @@ std::string parse(int argc, char** argv, Arguments& a) {
     }
   }
   return {};
+}
+
+// How the robot is, in a line: "ev3_0  12.0 s  SEARCH_MODE; leaders: ReportPapers#2 ev3_0,
+// WatchLight#3 burger_1; peers alive 4 of 4; packets 812 sent, 790 received, 0 refused".
+std::string statusLine(const MissionTables& mission, const RobotNode& node, Id self, double seconds, const TransportCounters& c) {
+  std::string out = mission.robots[self].name + "  " + std::to_string(static_cast<long long>(seconds)) + "." +
+                    std::to_string(static_cast<long long>(seconds * 10) % 10) + " s  " +
+                    mission.teams[mission.robots[self].team].modes[node.mode(self)].name + (node.alive(self) ? "" : " (crashed)");
+  std::string leaders;
+  for (Id lb = 0; lb < mission.leaderBlocks.size(); ++lb) {
+    const LeaderBlockTable& l = mission.leaderBlocks[lb];
+    if (std::find(l.candidates.begin(), l.candidates.end(), self) == l.candidates.end()) continue;
+    std::string who = "none";
+    for (Id r : l.candidates) {
+      if (node.alive(r) && node.leads(r, lb)) who = mission.robots[r].name;
+    }
+    const std::string block = l.name.substr(l.name.rfind('.') == std::string::npos ? 0 : l.name.rfind('.') + 1);
+    leaders += (leaders.empty() ? "" : ", ") + block + " " + who;
+  }
+  if (!leaders.empty()) out += "; leaders: " + leaders;
+  std::size_t peers = 0, alive = 0;
+  for (Id r = 0; r < mission.robots.size(); ++r) {
+    if (r == self) continue;
+    ++peers;
+    if (node.alive(r)) ++alive;
+  }
+  return out + "; peers alive " + std::to_string(alive) + " of " + std::to_string(peers) + "; packets " + std::to_string(c.sent) + " sent, " +
+         std::to_string(c.delivered) + " received, " + std::to_string(c.refused) + " refused";
 }
 
 }  // namespace
@@ -243,9 +275,16 @@ int robotMain(const MissionTables& mission, std::string_view robotName, int argc
   const Clock::time_point start = Clock::now();
   const auto end = static_cast<std::int64_t>(a.duration * 1e6);
   node.start();
+  const auto reportEvery = static_cast<std::int64_t>(a.reportEvery * 1e6);
+  std::int64_t nextReport = reportEvery;
   while (stopRequested == 0) {
     const std::int64_t now = std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - start).count();
     if (!node.advanceTo(std::min(now, end)) || now >= end) break;
+    // A line every --report-every, so that whoever watches the robot sees how it is.
+    if (reportEvery > 0 && now >= nextReport && !a.quiet) {
+      std::cout << statusLine(mission, node, self, static_cast<double>(now) / 1e6, transport->counters()) << std::endl;
+      while (nextReport <= now) nextReport += reportEvery;
+    }
     // Until the next timed step, but at least every millisecond for what the peers send.
     const std::int64_t next = std::min({node.nextEventTime(), now + 1000, end});
     std::this_thread::sleep_until(start + std::chrono::microseconds(next));
@@ -266,6 +305,7 @@ int robotMain(const MissionTables& mission, std::string_view robotName, int argc
     std::cout << name << ": " << trace.duration << " s, mode " << team.modes[node.mode(self)].name
               << (trace.summary.completed ? ", the mission's goal reached" : "") << (node.alive(self) ? "" : ", crashed (--crash-at)")
               << "; packets: " << c.sent << " sent, " << c.delivered << " received\n";
+    std::cout << "at the end: " << statusLine(mission, node, self, trace.duration, c) << "\n";
   }
   return trace.summary.violations.empty() ? 0 : 1;
 }

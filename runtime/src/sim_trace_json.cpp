@@ -64,23 +64,7 @@ class Writer {
   const SimTrace& trace_;
   std::string out_;
 
-  static std::string quote(std::string_view raw) {
-    const std::string s = detail::validUtf8(raw);
-    std::string out = "\"";
-    for (char c : s) {
-      switch (c) {
-        case '"': out += "\\\""; break;
-        case '\\': out += "\\\\"; break;
-        case '\n': out += "\\n"; break;
-        case '\r': out += "\\r"; break;
-        case '\t': out += "\\t"; break;
-        default:
-          if (static_cast<unsigned char>(c) < 0x20) out += fmt::format("\\u{:04x}", static_cast<unsigned>(c));
-          else out += c;
-      }
-    }
-    return out + "\"";
-  }
+  static std::string quote(std::string_view raw) { return detail::jsonString(raw); }
 
   static std::string time(double t) { return fixed(t, 6, "null"); }
   // A time that may never have come: negative means it did not.
@@ -101,6 +85,7 @@ class Writer {
     optional("label", e.label);
     optional("origin", e.origin);
     optional("detail", e.detail);
+    optional("block", e.block);
     if (e.peer < trace_.robots.size()) out_ += ", \"peer\": " + robot(e.peer);
     else if (e.kind == TraceEvent::Kind::Send && e.peer == kNoRobot) out_ += ", \"peer\": \"*\"";
     if (!e.changes.empty()) {

@@ -22,7 +22,8 @@ constexpr double kWidth = 960;
 constexpr double kMargin = 20;
 constexpr double kWorldMaxHeight = 460;
 constexpr double kLabelColumn = 120;  // robot names left of the timeline
-constexpr double kRowHeight = 44;
+constexpr double kRowHeight = 44;   // a robot's row with one lane of roles
+constexpr double kLaneHeight = 12;  // each further group block it holds a role in
 // Robots: strong colours, none of them red (red means a crash, a lost message or a violation).
 constexpr const char* kRobotColours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b",
                                          "#e377c2", "#17becf", "#bcbd22", "#393b79", "#637939"};
@@ -64,10 +65,23 @@ std::string tickLabel(double x, double step) { return fixed(x, step >= 1 ? 0 : s
 
 class Picture {
  public:
-  explicit Picture(const SimTrace& trace) : tr_(trace) {
+  explicit Picture(const SimTrace& trace) : tr_(trace), lanes_(trace.robots.size()) {
+    std::vector<std::string> blocks;  // every block with a role, in the order of its first role event
+    for (const TraceEvent& e : tr_.events) {
+      if (e.kind == TraceEvent::Kind::Role && std::find(blocks.begin(), blocks.end(), e.block) == blocks.end()) blocks.push_back(e.block);
+    }
     for (const TraceEvent& e : tr_.events) {
       if (e.kind == TraceEvent::Kind::Mode) modeColour(e.detail);
+      if (e.kind == TraceEvent::Kind::Role && e.robot < lanes_.size()) {
+        std::vector<std::string>& mine = lanes_[e.robot];
+        if (std::find(mine.begin(), mine.end(), e.block) == mine.end()) mine.push_back(e.block);
+      }
       end_ = std::max(end_, e.t);
+    }
+    // Each robot's lanes in the same order, so that a block's lane is at the same height on every row.
+    auto order = [&](const std::string& b) { return std::find(blocks.begin(), blocks.end(), b) - blocks.begin(); };
+    for (std::vector<std::string>& mine : lanes_) {
+      std::sort(mine.begin(), mine.end(), [&](const std::string& a, const std::string& b) { return order(a) < order(b); });
     }
     for (const PoseSample& s : tr_.poses) end_ = std::max(end_, s.t);
     if (tr_.duration > 0) end_ = tr_.duration;
@@ -76,7 +90,15 @@ class Picture {
 
   std::string render() {
     double y = kMargin;
-    text(kMargin, y + 4, 14, xml(title()), "title", "font-weight=\"bold\"");
+    // The title, and the faults on a line of their own when both do not fit on one.
+    const std::string whole = title(true);
+    if (textWidth(whole, 14) <= kWidth - 2 * kMargin) {
+      text(kMargin, y + 4, 14, xml(whole), "title", "font-weight=\"bold\"");
+    } else {
+      text(kMargin, y + 4, 14, xml(title(false)), "title", "font-weight=\"bold\"");
+      y += 16;
+      text(kMargin, y + 4, 11, xml("faults: " + tr_.faults), "title-faults");
+    }
     y += 16;
     y = world(y) + 36;
     y = timeline(y) + 24;
@@ -91,11 +113,19 @@ class Picture {
 
  private:
   const SimTrace& tr_;
+  // Per robot: the group blocks it holds roles in, a lane each, in the order the run first saw a
+  // role in them ("": a role event that names no block).
+  std::vector<std::vector<std::string>> lanes_;
   std::string out_;
   double end_ = 0;  // the timeline's last second
   std::map<std::string, std::size_t> modes_;  // mode -> colour, in order of first appearance
   // World -> picture: x' = left + (x - minX)·scale, y' = top + (maxY - y)·scale (y points up).
   double minX_ = 0, maxY_ = 0, scale_ = 1, left_ = 0, top_ = 0;
+  // What is drawn in the world so far that a label must not cover: marks, then labels.
+  struct Box {
+    double x0, y0, x1, y1;
+  };
+  std::vector<Box> taken_;
 
   std::string px(Vec2 p) const { return n2(left_ + (p.x - minX_) * scale_) + "," + n2(top_ + (maxY_ - p.y) * scale_); }
   double sx(double x) const { return left_ + (x - minX_) * scale_; }
@@ -107,10 +137,10 @@ class Picture {
   }
   static const char* robotColour(std::size_t r) { return kRobotColours[r % std::size(kRobotColours)]; }
 
-  std::string title() const {
+  std::string title(bool withFaults) const {
     std::string t = tr_.mission.empty() ? "simulated run" : tr_.mission;
     t += "  (seed " + std::to_string(tr_.seed) + ", " + fixed(tr_.duration, 1) + " s";
-    if (!tr_.faults.empty()) t += ", " + tr_.faults;
+    if (withFaults && !tr_.faults.empty()) t += ", " + tr_.faults;
     return t + ")";
   }
 
@@ -197,6 +227,7 @@ class Picture {
     facts();
     places();
     robots();
+    labels();
     out_ += "</g>\n";
     return top_ + h + 24;
   }
@@ -219,6 +250,7 @@ class Picture {
         out_ += "<polygon class=\"obstacle\" points=\"" + points + "\" fill=\"#9e9e9e\" stroke=\"#616161\">" + title + "</polygon>\n";
       }
       text(sx(middle.x) - textWidth(o.name, 9) / 2, sy(middle.y) + 3, 9, xml(o.name), "obstacle-label", "fill=\"#303030\"");
+      taken_.push_back(textBox(sx(middle.x) - textWidth(o.name, 9) / 2, sy(middle.y) + 3, 9, textWidth(o.name, 9)));
     }
   }
 
@@ -227,19 +259,29 @@ class Picture {
       const std::string label = xml(f.knowledge + ": " + f.fact);
       out_ += "<circle class=\"fact-site\" cx=\"" + n2(sx(f.at.x)) + "\" cy=\"" + n2(sy(f.at.y)) + "\" r=\"" + n2(f.radius * scale_) +
               "\" fill=\"none\" stroke=\"#b8860b\" stroke-width=\"1.2\" stroke-dasharray=\"4 3\"><title>" + label + "</title></circle>\n";
-      text(sx(f.at.x) + f.radius * scale_ + 3, sy(f.at.y) + 3, 9, label, "fact-label", "fill=\"#8b6508\"");
+      const double r = f.radius * scale_;
+      pending_.push_back({sx(f.at.x), sy(f.at.y), 9, label, "fact-label", "fill=\"#8b6508\"",
+                          {{r + 3, 3}, {-r - 3 - textWidth(f.knowledge + ": " + f.fact, 9), 3}, {-textWidth(f.knowledge + ": " + f.fact, 9) / 2, -r - 4},
+                           {-textWidth(f.knowledge + ": " + f.fact, 9) / 2, r + 11}}});
     }
   }
 
   void places() {
     for (const Place& p : tr_.world.places) {
-      out_ += "<g class=\"place\"><rect x=\"" + n2(sx(p.at.x) - 3) + "\" y=\"" + n2(sy(p.at.y) - 3) +
-              "\" width=\"6\" height=\"6\" fill=\"#000000\"/>";
-      out_ += "<text x=\"" + n2(sx(p.at.x) + 6) + "\" y=\"" + n2(sy(p.at.y) - 5) + "\" font-size=\"10\">" + xml(p.name) + "</text></g>\n";
+      out_ += "<rect class=\"place\" x=\"" + n2(sx(p.at.x) - 3) + "\" y=\"" + n2(sy(p.at.y) - 3) +
+              "\" width=\"6\" height=\"6\" fill=\"#000000\"><title>" + xml(p.name) + "</title></rect>\n";
+      taken_.push_back({sx(p.at.x) - 3, sy(p.at.y) - 3, sx(p.at.x) + 3, sy(p.at.y) + 3});
+      pending_.push_back({sx(p.at.x), sy(p.at.y), 10, xml(p.name), "place-label", "", pointSpots(textWidth(p.name, 10), false)});
     }
   }
 
   void robots() {
+    // Robots that end where another ended (within a triangle's size) share one label.
+    struct Group {
+      double x, y;
+      std::vector<std::size_t> robots;
+    };
+    std::vector<Group> groups;
     for (std::size_t r = 0; r < tr_.robots.size(); ++r) {
       const char* colour = robotColour(r);
       std::string points;
@@ -265,9 +307,82 @@ class Picture {
       };
       out_ += "<polygon class=\"robot\" points=\"" + corner(0, 10) + " " + corner(2.5, 7) + " " + corner(-2.5, 7) + "\" fill=\"" + colour +
               "\" stroke=\"#000000\" stroke-width=\"0.8\"><title>" + name + "</title></polygon>\n";
-      text(cx + 9, cy + 14, 10, name, "robot-label", std::string("fill=\"") + colour + "\"");
-      if (crashTime(r)) cross(cx, cy, 9, "crash-pose", 2.5);
+      taken_.push_back({cx - 10, cy - 10, cx + 10, cy + 10});
+      const auto near = std::find_if(groups.begin(), groups.end(), [&](const Group& g) { return std::hypot(g.x - cx, g.y - cy) < 12; });
+      if (near == groups.end()) groups.push_back({cx, cy, {r}});
+      else near->robots.push_back(r);
+      if (crashTime(r)) {
+        cross(cx, cy, 9, "crash-pose", 2.5);
+        taken_.push_back({cx - 9, cy - 9, cx + 9, cy + 9});
+      }
     }
+    for (const Group& g : groups) {
+      std::string names;
+      for (std::size_t r : g.robots) names += (names.empty() ? "" : ", ") + tr_.robots[r].name;
+      if (g.robots.size() > 3) {
+        names = std::to_string(g.robots.size()) + " robots: " + tr_.robots[g.robots.front()].name + " ... " + tr_.robots[g.robots.back()].name;
+      }
+      const std::string colour = g.robots.size() == 1 ? robotColour(g.robots.front()) : "#333333";
+      pending_.push_back({g.x, g.y, 10, xml(names), "robot-label", "fill=\"" + colour + "\"", pointSpots(textWidth(names, 10), true)});
+    }
+  }
+
+  // A label of the world, drawn once every mark is: at the first of its spots (offsets of its
+  // baseline's start from its anchor) where it covers nothing drawn before it.
+  struct Label {
+    double x, y, size;
+    std::string escaped;
+    const char* cls;
+    std::string extra;
+    std::vector<std::pair<double, double>> spots;
+  };
+  std::vector<Label> pending_;
+
+  // Spots around a point for a label `width` wide: beside it, then under or over it, then further
+  // down or up, a line at a time. A robot's label goes under it first, a place's over it.
+  static std::vector<std::pair<double, double>> pointSpots(double width, bool under) {
+    std::vector<std::pair<double, double>> spots;
+    const std::pair<double, double> below{9, 14}, above{6, -6};
+    spots.push_back(under ? below : above);
+    spots.push_back(under ? above : below);
+    spots.insert(spots.end(), {{-width - 9, 14}, {-width - 6, -6}, {-width / 2, 22}, {-width / 2, -13}});
+    for (int k = 1; k <= 6; ++k) spots.insert(spots.end(), {{9, 14 + 12.0 * k}, {6, -6 - 12.0 * k}});
+    return spots;
+  }
+
+  static Box textBox(double x, double y, double size, double width) { return {x, y - size * 0.8, x + width, y + size * 0.25}; }
+  bool overlapsTaken(const Box& b) const {
+    return std::any_of(taken_.begin(), taken_.end(), [&](const Box& o) { return b.x0 < o.x1 && o.x0 < b.x1 && b.y0 < o.y1 && o.y0 < b.y1; });
+  }
+
+  void labels() {
+    for (const Label& l : pending_) {
+      const double width = textWidth(unescaped(l.escaped), l.size);
+      std::pair<double, double> at = l.spots.back();
+      for (const auto& spot : l.spots) {
+        if (!overlapsTaken(textBox(l.x + spot.first, l.y + spot.second, l.size, width))) {
+          at = spot;
+          break;
+        }
+      }
+      taken_.push_back(textBox(l.x + at.first, l.y + at.second, l.size, width));
+      text(l.x + at.first, l.y + at.second, l.size, l.escaped, l.cls, l.extra);
+    }
+  }
+
+  // The text an escaped label stands for, to measure it.
+  static std::string unescaped(const std::string& escaped) {
+    std::string out;
+    for (std::size_t i = 0; i < escaped.size(); ++i) {
+      if (escaped[i] == '&') {
+        const std::size_t end = escaped.find(';', i);
+        out += '?';
+        i = end == std::string::npos ? escaped.size() : end;
+      } else {
+        out += escaped[i];
+      }
+    }
+    return out;
   }
 
   void cross(double x, double y, double half, const char* cls, double width) {
@@ -282,12 +397,18 @@ class Picture {
   }
 
   // A band from t0 to t1 on a row, with its name inside when it fits.
-  void band(const char* cls, double t0, double t1, double y, double h, const char* fill, const std::string& name, double fontSize) {
+  void band(const char* cls, double t0, double t1, double y, double h, const char* fill, const std::string& name, double fontSize,
+            const std::string& title = {}, const std::string& shorter = {}) {
     const double x0 = tx(t0), w = std::max(tx(t1) - x0, 0.5);
     out_ += "<rect class=\"" + std::string(cls) + "\" x=\"" + n2(x0) + "\" y=\"" + n2(y) + "\" width=\"" + n2(w) + "\" height=\"" + n2(h) +
-            "\" fill=\"" + fill + "\" stroke=\"#ffffff\" stroke-width=\"0.8\"><title>" + xml(name) + " (" + fixed(t0, 1) + " s to " +
-            fixed(t1, 1) + " s)</title></rect>\n";
-    if (textWidth(name, fontSize) + 6 <= w) text(x0 + 3, y + h / 2 + fontSize * 0.35, fontSize, xml(name), "band-label");
+            "\" fill=\"" + fill + "\" stroke=\"#ffffff\" stroke-width=\"0.8\"><title>" + xml(title.empty() ? name : title) + " (" +
+            fixed(t0, 3) + " s to " + fixed(t1, 3) + " s)</title></rect>\n";
+    // The name when it fits, else the shorter one when that does.
+    for (const std::string* label : {&name, &shorter}) {
+      if (label->empty() || textWidth(*label, fontSize) + 6 > w) continue;
+      text(x0 + 3, y + h / 2 + fontSize * 0.35, fontSize, xml(*label), "band-label");
+      break;
+    }
   }
 
   double timeline(double top) {
@@ -295,7 +416,8 @@ class Picture {
     out_ += "<g class=\"timeline\">\n";
     text(kMargin, top, 12, "Timeline", "section-title", "font-weight=\"bold\"");
     const double axis = top + 14;
-    const double bottom = axis + 8 + kRowHeight * static_cast<double>(tr_.robots.size());
+    double bottom = axis + 8;
+    for (std::size_t r = 0; r < tr_.robots.size(); ++r) bottom += rowHeight(r);
     out_ += "<line class=\"time-axis\" x1=\"" + n2(x0) + "\" y1=\"" + n2(axis) + "\" x2=\"" + n2(x1) + "\" y2=\"" + n2(axis) +
             "\" stroke=\"#000000\"/>\n";
     const double step = niceStep(end_, 12);
@@ -304,7 +426,11 @@ class Picture {
               "\" stroke=\"#dddddd\" stroke-width=\"0.8\"/>\n";
       text(tx(t) - 6, axis - 6, 9, tickLabel(t, step) + (t == 0 ? " s" : ""), "time-label");
     }
-    for (std::size_t r = 0; r < tr_.robots.size(); ++r) row(r, axis + 8 + kRowHeight * static_cast<double>(r));
+    double y = axis + 8;
+    for (std::size_t r = 0; r < tr_.robots.size(); ++r) {
+      row(r, y);
+      y += rowHeight(r);
+    }
     // Violations of no robot in particular cross every row.
     for (const TraceEvent& e : tr_.events) {
       if (e.kind == TraceEvent::Kind::Violation && e.robot >= tr_.robots.size()) violation(e, axis, bottom);
@@ -318,48 +444,70 @@ class Picture {
             "\" stroke=\"#d62728\" stroke-width=\"1.5\"><title>" + xml(e.label.empty() ? e.detail : e.label) + "</title></line>\n";
   }
 
+  double rowHeight(std::size_t r) const {
+    const std::size_t n = lanes_[r].size();
+    return kRowHeight + kLaneHeight * static_cast<double>(n > 1 ? n - 1 : 0);
+  }
+
+  // "ReportPapers: leader" for the role "leader of SlaveTeam.Report.ReportPapers#2" in that block.
+  static std::string roleText(const std::string& block, const std::string& role) {
+    if (block.empty()) return role;
+    std::string name = block.substr(block.rfind('.') == std::string::npos ? 0 : block.rfind('.') + 1);
+    name = name.substr(0, name.find('#'));
+    return name + ": " + (role.rfind("leader of ", 0) == 0 ? "leader" : role);
+  }
+
   void row(std::size_t r, double y) {
     const std::optional<double> crashed = crashTime(r);
+    const std::vector<std::string>& blocks = lanes_[r];
+    const double h = rowHeight(r);
+    const double ticks = y + 23 + kLaneHeight * static_cast<double>(std::max<std::size_t>(blocks.size(), 1)) - 1;  // messages and facts
     const double stop = crashed ? *crashed : end_;
     out_ += "<rect class=\"row-swatch\" x=\"" + n2(kMargin) + "\" y=\"" + n2(y + 8) + "\" width=\"10\" height=\"10\" fill=\"" + robotColour(r) + "\"/>\n";
     text(kMargin + 14, y + 17, 11, xml(tr_.robots[r].name), "row-label");
     if (!tr_.robots[r].team.empty()) text(kMargin + 14, y + 29, 8, xml(tr_.robots[r].team), "row-team", "fill=\"#666666\"");
-    out_ += "<line class=\"row-base\" x1=\"" + n2(tx(0)) + "\" y1=\"" + n2(y + kRowHeight - 1) + "\" x2=\"" + n2(tx(end_)) + "\" y2=\"" +
-            n2(y + kRowHeight - 1) + "\" stroke=\"#cccccc\"/>\n";
-    // Modes and roles hold from their event to the next one of their kind (or the crash, or the end).
+    out_ += "<line class=\"row-base\" x1=\"" + n2(tx(0)) + "\" y1=\"" + n2(y + h - 1) + "\" x2=\"" + n2(tx(end_)) + "\" y2=\"" +
+            n2(y + h - 1) + "\" stroke=\"#cccccc\"/>\n";
+    // A mode holds from its event to the next mode (or the crash, or the end); a role in a block,
+    // on that block's lane, to the robot's next role event in the same block.
     const TraceEvent* mode = nullptr;
-    const TraceEvent* role = nullptr;
+    std::vector<const TraceEvent*> role(blocks.size(), nullptr);
     auto closeMode = [&](double t) {
       if (mode != nullptr && t > mode->t) band("mode-band", mode->t, t, y + 3, 18, modeColour(mode->detail), mode->detail, 10);
     };
-    auto closeRole = [&](double t) {
-      if (role != nullptr && !role->detail.empty() && t > role->t) band("role-band", role->t, t, y + 23, 10, "#cfd8dc", role->detail, 8);
+    auto closeRole = [&](std::size_t lane, double t) {
+      const TraceEvent* e = role[lane];
+      if (e == nullptr || e->detail.empty() || !(t > e->t)) return;
+      band("role-band", e->t, t, y + 23 + kLaneHeight * static_cast<double>(lane), 10, "#cfd8dc", roleText(e->block, e->detail), 8,
+           tr_.robots[r].name + (e->block.empty() ? "" : ", " + e->block) + ": " + e->detail,
+           e->detail.rfind("leader of ", 0) == 0 ? "leader" : e->detail);
     };
     for (const TraceEvent& e : tr_.events) {
       if (e.robot != r || e.t > stop) continue;
-      switch (e.kind) {
-        case TraceEvent::Kind::Mode: closeMode(e.t), mode = &e; break;
-        case TraceEvent::Kind::Role: closeRole(e.t), role = &e; break;
-        default: break;
+      if (e.kind == TraceEvent::Kind::Mode) closeMode(e.t), mode = &e;
+      if (e.kind == TraceEvent::Kind::Role) {
+        const auto lane = static_cast<std::size_t>(std::find(blocks.begin(), blocks.end(), e.block) - blocks.begin());
+        closeRole(lane, e.t);
+        role[lane] = &e;
       }
     }
     closeMode(stop);
-    closeRole(stop);
+    for (std::size_t lane = 0; lane < blocks.size(); ++lane) closeRole(lane, stop);
     for (const TraceEvent& e : tr_.events) {
       if (e.robot != r) continue;
       const double x = tx(e.t);
       const std::string what = xml(e.detail) + (e.peer < tr_.robots.size() ? " / " + xml(tr_.robots[e.peer].name) : "") + " at " + fixed(e.t, 3) + " s";
       if (e.kind == TraceEvent::Kind::Send) {
-        out_ += "<line class=\"msg-sent\" x1=\"" + n2(x) + "\" y1=\"" + n2(y + 35) + "\" x2=\"" + n2(x) + "\" y2=\"" + n2(y + 40) +
+        out_ += "<line class=\"msg-sent\" x1=\"" + n2(x) + "\" y1=\"" + n2(ticks + 1) + "\" x2=\"" + n2(x) + "\" y2=\"" + n2(ticks + 6) +
                 "\" stroke=\"#888888\" stroke-width=\"1\"><title>sent " + what + "</title></line>\n";
       } else if (e.kind == TraceEvent::Kind::Drop) {
-        out_ += "<line class=\"msg-lost\" x1=\"" + n2(x) + "\" y1=\"" + n2(y + 34) + "\" x2=\"" + n2(x) + "\" y2=\"" + n2(y + 42) +
+        out_ += "<line class=\"msg-lost\" x1=\"" + n2(x) + "\" y1=\"" + n2(ticks) + "\" x2=\"" + n2(x) + "\" y2=\"" + n2(ticks + 8) +
                 "\" stroke=\"#d62728\" stroke-width=\"1.5\"><title>lost " + what + "</title></line>\n";
       } else if (e.kind == TraceEvent::Kind::Fact) {
-        out_ += "<path class=\"fact-found\" d=\"M" + n2(x) + "," + n2(y + 34.5) + " l3,3 l-3,3 l-3,-3 z\" fill=\"#b8860b\"><title>found " + what +
+        out_ += "<path class=\"fact-found\" d=\"M" + n2(x) + "," + n2(ticks + 0.5) + " l3,3 l-3,3 l-3,-3 z\" fill=\"#b8860b\"><title>found " + what +
                 "</title></path>\n";
       } else if (e.kind == TraceEvent::Kind::Violation) {
-        violation(e, y, y + kRowHeight - 2);
+        violation(e, y, y + h - 2);
       }
     }
     if (crashed) {

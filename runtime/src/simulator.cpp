@@ -57,6 +57,7 @@ Team::Team(const MissionTables& tables, const World& world, const TaskLibrary& l
     r.view.assign(tables.topics.size(), 0);
     r.message.assign(tables.topics.size(), 0);
     r.leads.assign(tables.leaderBlocks.size(), 0);
+    r.roles.assign(tables.groupBlocks.size(), std::string());
     r.silence.assign(tables.leaderBlocks.size(), 0);
     r.lostRun.assign(tables.leaderBlocks.size(), 0);
     for (Id k : table.knowledge) {
@@ -94,6 +95,9 @@ void Team::run() {
 void Team::start() {
   for (Id robot = 0; robot < robots_.size(); ++robot) {
     const TeamTable& team = t_.teams[t_.robots[robot].team];
+    // The initial mode is a mode too: the timeline shows it from the start.
+    // (Labelled "starts in": the mode changes are the events after it.)
+    if (local(robot)) note(robot, TraceEvent::Kind::Mode, "starts in " + team.modes[robots_[robot].mode].name, team.modes[robots_[robot].mode].name);
     for (Id p = 0; p < robots_[robot].plans.size(); ++p) {
       // A networked robot's peers are replicas: where they are comes from their Status packets.
       if (local(robot)) startPlan(robot, p, team.modes[robots_[robot].mode].entry[p]);
@@ -189,18 +193,24 @@ void Team::processUntil(Micros end) {
 
 void Team::crashPlanned(Id c) {
   const std::string& who = options_.crashes[c].robot;
-  Id target = kNone;
+  Id target = kNone, ledBlock = kNone;
   if (who == "leader" || who.rfind("leader:", 0) == 0) {
     const std::string block = who.size() > 7 ? who.substr(7) : std::string();
     for (Id lb = 0; lb < t_.leaderBlocks.size() && target == kNone; ++lb) {
       if (!block.empty() && t_.leaderBlocks[lb].name.find(block) == std::string::npos) continue;
       for (Id cand : t_.leaderBlocks[lb].candidates) {
-        if (robots_[cand].alive && robots_[cand].leads[lb] != 0) target = cand;
+        if (robots_[cand].alive && robots_[cand].leads[lb] != 0) target = cand, ledBlock = lb;
       }
     }
     if (target == kNone) {
       note(kNone, TraceEvent::Kind::Note, "crash of " + who + " planned, but no robot leads then");
       return;
+    }
+    // The faults say whom it hit: "crash leader at 5 s (ev3_1, leader of SlaveTeam.Report.ReportPapers#2)".
+    const std::string planned = "crash " + who + " at " + fmt::format("{:g}", options_.crashes[c].at) + " s";
+    const std::size_t at = trace_.faults.find(planned);
+    if (at != std::string::npos && trace_.faults.compare(at + planned.size(), 2, " (") != 0) {
+      trace_.faults.insert(at + planned.size(), " (" + t_.robots[target].name + ", leader of " + t_.leaderBlocks[ledBlock].name + ")");
     }
   } else {
     for (Id r = 0; r < t_.robots.size(); ++r) {

@@ -60,7 +60,7 @@ struct RobotRun {
   std::vector<KnowledgeStore> knowledge;   // per entry of RobotTable::knowledge
   std::uint64_t lamport = 0;
   Vec2 destination;
-  std::string role;                        // for the trace
+  std::vector<std::string> roles;          // per group block, for the trace ("" outside it)
 };
 
 struct QueuedEvent {
@@ -163,6 +163,12 @@ class Team {
   bool waiting(Id robot, Id leaderBlock) const;
   bool inService(Id robot, Id knowledge) const;
   void leaderChange(Id leaderBlock, Id robot);
+  // The robot's role in a group block is now `role` ("" when it leaves): one Role event naming the
+  // block, whose lane of the robot's timeline then shows it. `why` labels the event when it is not
+  // the role itself ("steps down: hears a preferred leader").
+  void setRole(Id robot, Id groupBlock, std::string role, std::string why = {});
+  // Its leader block's role, "leader of BLOCK".
+  std::string leaderRole(Id groupBlock) const;
   void convergence(Id knowledge);
   Micros latency();
 

@@ -129,6 +129,17 @@ void Team::note(Id robot, TraceEvent::Kind kind, std::string label, std::string 
   trace_.events.push_back(std::move(e));
 }
 
+void Team::setRole(Id robot, Id groupBlock, std::string role, std::string why) {
+  std::string& now = robots_[robot].roles[groupBlock];
+  if (now == role && why.empty()) return;
+  const std::string& block = t_.groupBlocks[groupBlock].name;
+  note(robot, TraceEvent::Kind::Role, !why.empty() ? why : role.empty() ? "leaves " + block : role, role);
+  trace_.events.back().block = block;
+  now = std::move(role);
+}
+
+std::string Team::leaderRole(Id groupBlock) const { return "leader of " + t_.groupBlocks[groupBlock].name; }
+
 void Team::leaderChange(Id lb, Id robot) {
   LeaderChange c;
   c.block = t_.leaderBlocks[lb].name;

@@ -175,7 +175,7 @@ void Team::heartbeatPeriod(Id lb) {
   beginStep();
   for (std::size_t i = 0; i < n; ++i) {
     RobotRun& r = robots_[l.candidates[i]];
-    if (r.leads[lb] != 0 && leads[i] == 0) note(l.candidates[i], TraceEvent::Kind::Role, "steps down: hears a preferred leader");
+    if (r.leads[lb] != 0 && leads[i] == 0) setRole(l.candidates[i], l.block, "candidate", "steps down: hears a preferred leader");
     r.silence[lb] = silence[i];
     r.lostRun[lb] = l.lossyHeartbeats ? lost[i] : 0;
     r.leads[lb] = leads[i];
@@ -215,8 +215,7 @@ void Team::takeOver(Id robot, std::size_t slot) {
   if (!l.lossyHeartbeats) {  // the new leader's announcement
     for (Id d : l.candidates) robots_[d].silence[lb] = 0;
   }
-  r.role = "leader of " + block.name;
-  note(robot, TraceEvent::Kind::Role, r.role, r.role);
+  setRole(robot, l.block, leaderRole(l.block));
   leaderChange(lb, robot);
   startPlan(robot, block.plan, block.arms[l.leaderArm].entry);
   step(robot, {rule}, t_.rules[rule].label, t_.rules[rule].origin);

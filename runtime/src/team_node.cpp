@@ -120,8 +120,7 @@ void Team::onPacket(const Packet& p) {
       if (me.leads[lb] != 0) return;
       beginStep();
       me.leads[lb] = 1;
-      me.role = "leader of " + t_.groupBlocks[l.block].name;
-      note(self, TraceEvent::Kind::Role, me.role, me.role);
+      setRole(self, l.block, leaderRole(l.block));
       leaderChange(lb, self);
       step(self, {}, "elected leader of " + t_.groupBlocks[l.block].name);
       sendStatus();
@@ -225,7 +224,7 @@ void Team::nodeHeartbeat(Id lb) {
   const bool stepsDown = me.leads[lb] != 0 && heardPreferred_[lb] != 0;
   if (stepsDown) {
     me.leads[lb] = 0;
-    note(self, TraceEvent::Kind::Role, "steps down: hears a preferred leader");
+    setRole(self, l.block, "candidate", "steps down: hears a preferred leader");
   }
   heard_[lb] = heardPreferred_[lb] = 0;
   if (silence != me.silence[lb] || stepsDown) step(self, {}, "a heartbeat period passes");
@@ -265,8 +264,7 @@ void Team::nodeElect(Id lb) {
     robots_[best].leads[lb] = 1;  // its own belief, or this robot's replica of it until its status says
     leaderChange(lb, best);
     if (best == self) {
-      robots_[self].role = "leader of " + t_.groupBlocks[l.block].name;
-      note(self, TraceEvent::Kind::Role, robots_[self].role, robots_[self].role);
+      setRole(self, l.block, leaderRole(l.block));
     }
     for (Id c : l.candidates) {
       if (c != self) emit(c, {.kind = Packet::Kind::LeaderAnnouncement, .index = lb, .value = static_cast<std::int32_t>(best)});

@@ -250,8 +250,7 @@ void Team::applyEffects(Id robot, Id plan, const Row& row) {
           robots_[best].leads[e.index] = 1;
           leaderChange(e.index, best);
           if (best != robot) {  // elected while still at the formation point: its timeline shows it from now
-            robots_[best].role = "leader of " + t_.groupBlocks[l.block].name;
-            note(best, TraceEvent::Kind::Role, robots_[best].role, robots_[best].role);
+            setRole(best, l.block, leaderRole(l.block));
           }
         }
         if (none && l.detectsFailures && !l.lossyHeartbeats) {  // the new leader's announcement
@@ -262,15 +261,13 @@ void Team::applyEffects(Id robot, Id plan, const Row& row) {
       case EffectRow::Kind::JoinArm: {
         const GroupBlockTable& block = t_.groupBlocks[e.index];
         const ArmTable& arm = block.arms[e.arm];
-        r.role = arm.leader ? "leader of " + block.name : arm.label;
-        note(robot, TraceEvent::Kind::Role, r.role, r.role);
+        setRole(robot, e.index, arm.leader ? leaderRole(e.index) : arm.label);
         break;
       }
       case EffectRow::Kind::LeaveBlock: {
         const Id lb = t_.groupBlocks[e.index].leader;
         if (lb != kNone) r.leads[lb] = 0;
-        r.role.clear();
-        note(robot, TraceEvent::Kind::Role, "leaves " + t_.groupBlocks[e.index].name);
+        setRole(robot, e.index, "");
         break;
       }
     }
@@ -288,9 +285,8 @@ void Team::enterMode(Id robot, Id mode) {
   for (Id lb = 0; lb < r.leads.size(); ++lb) {
     if (std::find(kept.begin(), kept.end(), lb) == kept.end()) r.leads[lb] = 0;
   }
-  if (!r.role.empty()) {
-    r.role.clear();
-    note(robot, TraceEvent::Kind::Role, "");
+  for (Id b = 0; b < r.roles.size(); ++b) {
+    if (!r.roles[b].empty()) setRole(robot, b, "");
   }
   note(robot, TraceEvent::Kind::Mode, team.modes[mode].name, team.modes[mode].name);
   trace_.summary.modeChanges.emplace_back(now(), t_.robots[robot].name + ": " + team.modes[mode].name);

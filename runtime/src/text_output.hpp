@@ -1,6 +1,7 @@
 #pragma once
-// What the trace writers (JSON and SVG) share: text made safe for either format, and numbers with a
-// fixed number of decimals so that the same trace always gives the same bytes.
+// What the runtime's writers (the trace's JSON and SVG, a starting world's JSON) share: text made
+// safe for either format, and numbers with a fixed number of decimals so that the same input always
+// gives the same bytes.
 #include <cmath>
 #include <string>
 #include <string_view>
@@ -45,6 +46,25 @@ inline std::string fixed(double x, int decimals, std::string_view otherwise = "0
   std::string s = fmt::format("{:.{}f}", x, decimals);
   if (s.front() == '-' && s.find_first_not_of("-0.") == std::string::npos) s.erase(0, 1);
   return s;
+}
+
+// A JSON string (RFC 8259) of the text made valid UTF-8: quotes, backslashes and control characters
+// escaped.
+inline std::string jsonString(std::string_view raw) {
+  std::string out = "\"";
+  for (char c : validUtf8(raw)) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\r': out += "\\r"; break;
+      case '\t': out += "\\t"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) out += fmt::format("\\u{:04x}", static_cast<unsigned>(static_cast<unsigned char>(c)));
+        else out += c;
+    }
+  }
+  return out + "\"";
 }
 
 }  // namespace semo::runtime::detail

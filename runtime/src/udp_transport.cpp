@@ -158,6 +158,7 @@ bool UdpTransport::receive(int socket, Packet& packet) {
     if (decodePacket(std::span<const std::uint8_t>(buffer.data(), static_cast<std::size_t>(n)), packet) != DecodeError::None ||
         packet.sender >= endpoints_.size()) {
       ++malformed_;
+      ++counters_.refused;
       continue;
     }
     if (packet.sender == self_) continue;  // its own datagram to the group, looped back

@@ -85,6 +85,13 @@ void expectTheSwarmTurnedBack(const fs::path& dir, const std::string& transport)
     const fs::path base = dir / (transport + "_" + robot);
     const std::string said = slurp(base.string() + ".out");
     EXPECT_NE(said.find("mode RETREAT_MODE, the mission's goal reached"), std::string::npos) << said;
+    // A line every 5 s while it runs, and the same at the end: mode, live peers, packets.
+    EXPECT_TRUE(std::regex_search(said, std::regex(std::string("(^|\n)") + robot + "  5\\.[0-9] s  MARCH_MODE; peers alive 2 of 2; packets [0-9]+ sent, [0-9]+ received, 0 refused\n")))
+        << said;
+    EXPECT_TRUE(std::regex_search(said, std::regex(std::string("(^|\n)") + robot + "  2[0-9]\\.[0-9] s  RETREAT_MODE; peers alive 2 of 2; ")))
+        << said;
+    EXPECT_TRUE(std::regex_search(said, std::regex(std::string("\nat the end: ") + robot + "  [0-9.]+ s  RETREAT_MODE; ")))
+        << said;
     const nlohmann::json trace = nlohmann::json::parse(slurp(base.string() + ".json"));
     std::size_t self = 0;
     while (self < trace["robots"].size() && trace["robots"][self]["name"] != robot) ++self;

@@ -44,6 +44,7 @@ std::vector<OutputOption> fileOutputs() {
        [](Work& w, const std::string& f) { return std::vector<std::string>{"simulate", w.swarm(), "-s", w.swarmStrategy(), "--no-dataflow", "--trace", f}; }, swarm},
       {"simulate --svg",
        [](Work& w, const std::string& f) { return std::vector<std::string>{"simulate", w.swarm(), "-s", w.swarmStrategy(), "--no-dataflow", "--svg", f}; }, swarm},
+      {"world -o", [](Work& w, const std::string& f) { return std::vector<std::string>{"world", w.swarm(), "-s", w.swarmStrategy(), "-o", f}; }, swarm},
       {"replay --save-trace", [](Work& w, const std::string& f) { return std::vector<std::string>{"replay", w.trace(), "--save-trace", f}; }, mission},
       {"replay --svg", [](Work& w, const std::string& f) { return std::vector<std::string>{"replay", w.trace(), "--svg", f}; }, mission},
       {"analyze --svg (mission)",

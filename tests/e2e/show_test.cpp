@@ -36,6 +36,20 @@ TEST(Show, PrintsTheCounterexampleCheckPrinted) {
   EXPECT_NE(check.out.find(show.out), std::string::npos) << "show prints the very text of check:\n" << show.out;
 }
 
+// A mission with a lint warning: check says it once, show (of what check kept) does not again.
+TEST(Show, DoesNotRepeatTheMissionsWarnings) {
+  const fs::path dir = workDir("show_no_warnings");
+  const std::string saved = (dir / "cex.json").string();
+  CliRun check = verify("check specs/defects/lone_lidar.semo -s specs/defects/strategy.xml --trace-out '" + saved + "'", dir);
+  ASSERT_EQ(check.exit, 1) << check.err;
+  ASSERT_NE(check.err.find("lone_lidar.semo:12:6: warning: "), std::string::npos) << check.err;
+  EXPECT_NE(check.err.find("semo-verify check: wrote " + saved + "\n"), std::string::npos) << check.err;
+  CliRun show = verify("show '" + saved + "'", dir);
+  ASSERT_EQ(show.exit, 0) << show.err;
+  EXPECT_EQ(show.err, "");
+  EXPECT_NE(show.out.find("[mapper] crashes"), std::string::npos) << show.out;
+}
+
 TEST(Show, OneRobotsStepsWithTheOthersCounted) {
   const fs::path dir = workDir("show_robot");
   const std::string saved = (dir / "cex.json").string();

@@ -50,7 +50,8 @@ class Trace {
   explicit Trace(json j) : j_(std::move(j)) {
     for (const json& r : j_["robots"]) names_.push_back(r["name"].get<std::string>());
     for (const json& e : j_["events"]) {
-      if (e["kind"] == "mode") modes_.push_back({e["t"].get<double>(), e["robot"].get<std::string>(), e["detail"].get<std::string>()});
+      // The mode changes: not the mode each robot starts in.
+      if (e["kind"] == "mode" && e.value("label", "").rfind("starts in ", 0) != 0) modes_.push_back({e["t"].get<double>(), e["robot"].get<std::string>(), e["detail"].get<std::string>()});
       if (e["kind"] == "crash") crashes_[e["robot"].get<std::string>()] = e["t"].get<double>();
     }
   }

@@ -78,7 +78,7 @@ function(same_properties)
 endfunction()
 
 if(DEPTH STREQUAL "full")
-  execute_process(COMMAND ${EXE} check ${model_args} --json --no-symmetry --safety-only
+  execute_process(COMMAND ${EXE} check ${model_args} --json --engine explicit --no-symmetry --safety-only
                   OUTPUT_VARIABLE explicit_json RESULT_VARIABLE explicit_code)
   execute_process(COMMAND ${EXE} check ${model_args} --json --engine smt --safety-only
                   OUTPUT_VARIABLE smt_json RESULT_VARIABLE smt_code)
@@ -93,7 +93,7 @@ if(DEPTH STREQUAL "full")
   return()
 endif()
 
-execute_process(COMMAND ${EXE} check ${model_args} --json --no-symmetry --safety-only --max-depth ${DEPTH}
+execute_process(COMMAND ${EXE} check ${model_args} --json --engine explicit --no-symmetry --safety-only --max-depth ${DEPTH}
                 OUTPUT_VARIABLE explicit_json RESULT_VARIABLE explicit_code)
 execute_process(COMMAND ${EXE} check ${model_args} --json --engine smt --max-depth ${DEPTH} --bmc-only --safety-only
                 OUTPUT_VARIABLE smt_json RESULT_VARIABLE smt_code)

@@ -11,7 +11,7 @@
 # counts are compared as for a complete search; pan judges a state only when it expands it, so the
 # verdicts come from a second run, `pan -m(DEPTH+1)`, which expands the states at depth DEPTH too.
 #
-# 1. `semo-verify check --json --no-symmetry --safety-only INPUT` (SPIN stores every state, so semo
+# 1. `semo-verify check --json --engine explicit --no-symmetry --safety-only INPUT` (SPIN stores every state, so semo
 #    must too; the LTL properties are not part of the cross-check, and leave the exit code 3): the state count, whether the search was complete, and the
 #    verdict of each property (the invariants, and deadlock_freedom when the model has valid_end).
 # 2. `semo-verify export --promela INPUT`, `spin -a`, `gcc -O2 -DNOREDUCE -DSAFETY`: no partial-order
@@ -40,7 +40,7 @@ if(DEFINED DEPTH)
 endif()
 
 # ---- semo
-execute_process(COMMAND "${EXE}" check --json --no-symmetry --safety-only ${model_args} ${semo_bound}
+execute_process(COMMAND "${EXE}" check --json --engine explicit --no-symmetry --safety-only ${model_args} ${semo_bound}
   WORKING_DIRECTORY "${WORKDIR}" RESULT_VARIABLE code OUTPUT_VARIABLE json ERROR_VARIABLE err)
 set(expected_codes "^[013]$")  # 3: a bound cut the search short, or LTL properties were not checked
 if(NOT code MATCHES "${expected_codes}")

@@ -4,7 +4,7 @@
 #   cmake -DEXE=semo-verify -DINPUT=model [-DSTRATEGY=strategy.xml] [-DWORKDIR=dir] [-DSPIN=spin]
 #         [-DCC=gcc] -P spin_liveness.cmake
 #
-# 1. `semo-verify check --json --no-slicing --no-symmetry INPUT`: the verdict of each LTL property
+# 1. `semo-verify check --json --engine explicit --no-slicing --no-symmetry INPUT`: the verdict of each LTL property
 #    on the whole product (and, for the record, `check --json` with every reduction, which must
 #    agree with it).
 # 2. `semo-verify export --promela --spin-ltl INPUT`: the model with the rule of the last step kept in
@@ -52,7 +52,7 @@ function(ltl_verdicts json out)
 endfunction()
 
 # ---- semo
-execute_process(COMMAND "${EXE}" check --json --no-slicing --no-symmetry ${model_args}
+execute_process(COMMAND "${EXE}" check --json --engine explicit --no-slicing --no-symmetry ${model_args}
   WORKING_DIRECTORY "${WORKDIR}" RESULT_VARIABLE code OUTPUT_VARIABLE json ERROR_VARIABLE err)
 if(NOT code MATCHES "^[01]$")
   message(FATAL_ERROR "semo-verify check exited with ${code} (0 or 1 expected: every property decided):\n${json}${err}")

@@ -1,7 +1,7 @@
 // docs/tutorial.md, read as its reader reads it: every command it shows (a fenced block whose first
 // line is `$ semo-verify ...`) is run from a folder that sees the repository's specs/ as the top
 // folder does, and what the page shows under it must be what the command prints, line for line.
-// A line `...` on the page stands for any number of lines; a duration ("0.002 s") stands for any
+// A line `...` on the page stands for any number of lines; a duration ("2.38 ms") stands for any
 // duration; the progress lines of a slow run ("[3 s] ...", stderr) are not compared. stderr comes
 // first, as on a terminal, where the diagnostics are written before the report. The exit code is the
 // one the page's `— exit N` says, else 0. A mission the page lists after "`specs/....semo`:" must be
@@ -66,13 +66,13 @@ std::optional<std::string> listedFile(const Block& b) {
 
 // A line of the page as a regular expression: itself, but for durations.
 std::regex lineOfPage(const std::string& shown) {
-  static const std::regex duration(R"([0-9]+\.[0-9]+ s\b)");
+  static const std::regex duration(R"([0-9]+(\.[0-9]+)? (ms|s|min)\b)");
   static const std::regex special(R"([.^$|()\[\]{}*+?\\])");
   std::string pattern;
   std::size_t from = 0;
   for (auto it = std::sregex_iterator(shown.begin(), shown.end(), duration); it != std::sregex_iterator(); ++it) {
     pattern += std::regex_replace(shown.substr(from, it->position() - from), special, R"(\$&)");
-    pattern += R"([0-9]+(\.[0-9]+)?(e-?[0-9]+)? s)";
+    pattern += R"([0-9]+(\.[0-9]+)? (ms|s|min))";
     from = it->position() + it->length();
   }
   pattern += std::regex_replace(shown.substr(from), special, R"(\$&)");
@@ -207,8 +207,9 @@ TEST(TutorialPage, ListsItsMissionAsTheFileIs) {
 // The comparison itself: `...` stands for lines, a duration for a duration, and nothing else is
 // loose.
 TEST(TutorialPage, TheComparisonIsLooseOnlyWhereItSays) {
-  const std::vector<std::string> printed{"model: m", "explored: 3 states, 0.00238627 s", "x", "y", "result: 1 proven"};
+  const std::vector<std::string> printed{"model: m", "explored: 3 states, 2.38 ms", "x", "y", "result: 1 proven"};
   EXPECT_EQ(mismatch({"model: m", "explored: 3 states, 0.08 s", "x", "y", "result: 1 proven"}, printed), "");
+  EXPECT_EQ(mismatch({"model: m", "explored: 3 states, 12 ms", "x", "y", "result: 1 proven"}, printed), "");
   EXPECT_EQ(mismatch({"model: m", "...", "result: 1 proven"}, printed), "");
   EXPECT_EQ(mismatch({"...", "x", "...", "result: 1 proven"}, printed), "");
   EXPECT_NE(mismatch({"model: m", "explored: 4 states, 0.08 s", "x", "y", "result: 1 proven"}, printed), "");
@@ -217,6 +218,7 @@ TEST(TutorialPage, TheComparisonIsLooseOnlyWhereItSays) {
   EXPECT_NE(mismatch({"model: m", "...", "y", "x", "..."}, printed), "") << "out of order";
   EXPECT_NE(mismatch({"model: m", "...", "result: 1 proven", "z"}, printed), "");
   EXPECT_NE(mismatch({"model: (m)"}, {"model: m"}), "") << "parentheses are literal";
+  EXPECT_NE(mismatch({"explored: 4 ms"}, {"explored: 4 states"}), "") << "a duration stands only for a duration";
 }
 
 }  // namespace

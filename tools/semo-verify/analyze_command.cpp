@@ -93,7 +93,7 @@ int analyzeBySampling(const AnalyzeOptions& options, const ir::Model& model, con
   if (options.json) std::cout << out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   if (options.svg && !writeAtomically(*options.svg, probabilityChartSvg(series, "P(reached within t steps), estimated - " + input,
                                                                        "t (steps of the model)"))) {
-    std::cerr << "semo-verify: error: cannot write '" << *options.svg << "'\n";
+    std::cerr << errorPrefix() << "cannot write '" << *options.svg << "'\n";
     return kBadInput;
   }
   return kOk;
@@ -117,7 +117,7 @@ int runAnalyze(const AnalyzeOptions& options) {
     return analyzeMission(options, *built);
   }
   if (options.lossProb) {
-    std::cerr << "semo-verify: error: --loss-prob applies to a mission; an IR model states its probabilities in its rules\n";
+    std::cerr << errorPrefix() << "--loss-prob applies to a mission; an IR model states its probabilities in its rules\n";
     return kBadInput;
   }
   const ir::Model& model = *built->model;
@@ -128,7 +128,7 @@ int runAnalyze(const AnalyzeOptions& options) {
     if (f.kind == ir::Ltl::Kind::Eventually && f.args.size() == 1 && f.args[0].kind == ir::Ltl::Kind::Atom) asked.push_back(p);
   }
   if (asked.empty()) {
-    std::cerr << "semo-verify: error: " << input << " has no property of the form `eventually {p}`: nothing to measure\n";
+    std::cerr << errorPrefix() << input << " has no property of the form `eventually {p}`: nothing to measure\n";
     return kBadInput;
   }
   std::vector<double> reward(model.rules.size(), 1.0);
@@ -140,7 +140,7 @@ int runAnalyze(const AnalyzeOptions& options) {
       matched += reward[r] > 0 ? 1 : 0;
     }
     if (matched == 0) {
-      std::cerr << "semo-verify: error: --reward '" << *options.reward << "' names no rule of " << input << "\n";
+      std::cerr << errorPrefix() << "--reward '" << *options.reward << "' names no rule of " << input << "\n";
       return kBadInput;
     }
     counting = fmt::format("steps of the {} rule{} matching '{}'", matched, matched == 1 ? "" : "s", *options.reward);
@@ -159,11 +159,11 @@ int runAnalyze(const AnalyzeOptions& options) {
       try {
         return analyzeBySampling(options, model, asked, reward, counting);
       } catch (const checker::MarkovError& inner) {
-        std::cerr << "semo-verify: error: " << inner.what() << "\n";
+        std::cerr << errorPrefix() << inner.what() << "\n";
         return kBadInput;
       }
     }
-    std::cerr << "semo-verify: " << (e.limitReached ? "limit" : "error") << ": " << e.what() << "\n";
+    std::cerr << programName() << ": " << (e.limitReached ? "limit" : "error") << ": " << e.what() << "\n";
     return e.limitReached ? kLimit : kBadInput;
   }
   const bool deterministic = chain.deterministic();
@@ -183,7 +183,7 @@ int runAnalyze(const AnalyzeOptions& options) {
       answers.push_back(std::move(a));
     }
   } catch (const checker::MarkovError& e) {
-    std::cerr << "semo-verify: " << (e.limitReached ? "limit" : "error") << ": " << e.what() << "\n";
+    std::cerr << programName() << ": " << (e.limitReached ? "limit" : "error") << ": " << e.what() << "\n";
     return e.limitReached ? kLimit : kBadInput;
   }
 
@@ -212,8 +212,8 @@ int runAnalyze(const AnalyzeOptions& options) {
       std::cout << "  P(within t steps):";
       for (std::size_t t = 1; t <= options.rounds; ++t) {
         if (t > 1 && (t - 1) % 5 == 0) std::cout << "\n                    ";
-        const std::string lo = fmt::format("{:.6f}", a.within[0][t]), hi = fmt::format("{:.6f}", a.within[1][t]);
-        std::cout << fmt::format("  {:>3}: {}", t, deterministic || lo == hi ? hi : lo + ".." + hi);
+        const std::string lo = probabilityText(a.within[0][t]), hi = probabilityText(a.within[1][t]);
+        std::cout << fmt::format("  {:>3}: {}", t, deterministic || lo == hi ? hi : lo + (lo.find(' ') != std::string::npos || hi.find(' ') != std::string::npos ? " .. " : "..") + hi);
       }
       std::cout << "\n";
     }
@@ -226,7 +226,7 @@ int runAnalyze(const AnalyzeOptions& options) {
     }
     const std::string svg = probabilityChartSvg(series, "P(reached within t steps) - " + input, "t (steps of the model)");
     if (!writeAtomically(*options.svg, svg)) {
-      std::cerr << "semo-verify: error: cannot write '" << *options.svg << "'\n";
+      std::cerr << errorPrefix() << "cannot write '" << *options.svg << "'\n";
       return kBadInput;
     }
   }

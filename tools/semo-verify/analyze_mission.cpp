@@ -19,6 +19,26 @@ namespace semo::cli {
 std::string number(double v) { return std::isinf(v) ? std::string("infinite") : fmt::format("{:.9g}", v); }
 
 namespace {
+// 3.2e-7: two significant digits, the exponent without its padding.
+std::string small(double v) {
+  const int exponent = static_cast<int>(std::floor(std::log10(v)));
+  double mantissa = v / std::pow(10.0, exponent);
+  std::string digits = fmt::format("{:.1f}", mantissa);
+  if (digits == "10.0") return fmt::format("1.0e{}", exponent + 1);
+  return digits + "e" + std::to_string(exponent);
+}
+}  // namespace
+
+std::string probabilityText(double p) {
+  constexpr double kExact = 1e-12;  // below the half-unit of the sixth decimal and above rounding
+  if (p >= 1 - kExact) return "1";
+  if (p <= kExact) return "0";
+  if (p > 0.9995) return "1 - " + small(1 - p);
+  if (p < 0.0005) return small(p);
+  return fmt::format("{:.6f}", p);
+}
+
+namespace {
 
 struct Finder {
   std::string robot;
@@ -108,7 +128,7 @@ void printHeartbeats(const Heartbeats& h, double loss) {
                            h.horizon, static_cast<double>(h.horizon * static_cast<std::size_t>(h.heartbeatMillis)) / 1000.0);
   auto line = [&](const char* what, std::size_t run, const checker::LossRunAnswer& a) {
     const double e = a.expectedPeriods.infinite ? std::numeric_limits<double>::infinity() : a.expectedPeriods.value;
-    std::cout << fmt::format("  {:<44} P = {:.6f}; expected after {} periods ({} s)\n", fmt::format(fmt::runtime(what), run), a.withinPeriods.back(),
+    std::cout << fmt::format("  {:<44} P = {}; expected after {} periods ({} s)\n", fmt::format(fmt::runtime(what), run), probabilityText(a.withinPeriods.back()),
                              number(e), number(e * static_cast<double>(h.heartbeatMillis) / 1000.0));
   };
   line("{} lost in a row (outside the assumption):", h.burst + 1, h.outside);
@@ -129,7 +149,7 @@ int analyzeMission(const AnalyzeOptions& given, const BuiltModel& built) {
   AnalyzeOptions options = given;
   if (!options.lossProb) options.lossProb = mission.assumptions.lossProbability;
   if (!options.lossProb) {
-    std::cerr << "semo-verify: error: give --loss-prob P or `assume loss probability P` in the verify block (the probability that "
+    std::cerr << errorPrefix() << "give --loss-prob P or `assume loss probability P` in the verify block (the probability that "
                  "one copy of a message is lost): a mission's knowledge spread and its heartbeats are measured under that loss\n";
     return kBadInput;
   }
@@ -163,11 +183,11 @@ int analyzeMission(const AnalyzeOptions& given, const BuiltModel& built) {
       heartbeats.push_back(std::move(h));
     }
   } catch (const checker::MarkovError& e) {
-    std::cerr << "semo-verify: " << (e.limitReached ? "limit" : "error") << ": " << e.what() << "\n";
+    std::cerr << programName() << ": " << (e.limitReached ? "limit" : "error") << ": " << e.what() << "\n";
     return e.limitReached ? kLimit : kBadInput;
   }
   if (items.empty() && heartbeats.empty()) {
-    std::cerr << "semo-verify: error: " << options.model.input
+    std::cerr << errorPrefix() << options.model.input
               << " has neither a group service that spreads knowledge by broadcast among two or more robots nor a leader block that "
                  "detects failures: nothing to measure\n";
     return kBadInput;
@@ -210,7 +230,9 @@ int analyzeMission(const AnalyzeOptions& given, const BuiltModel& built) {
     std::cout << out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   } else {
     std::cout << "model:       " << options.model.input << "\n";
-    std::cout << fmt::format("assumes:     each copy of a message lost with probability {:g} ({}), independently; no crash\n",
+    std::cout << fmt::format("assumes:     each copy of a message lost with probability {:g} ({}), independently; no crash\n"
+                             "             (the figures are for the robots that work: `check` proves that the knowledge converges\n"
+                             "             under the verify block's crashes too, without saying how soon)\n",
                              *options.lossProb, source);
     for (const Item& i : items) {
       std::cout << fmt::format("knowledge {}: {} robots, a gossip round every {} ms, {} extra cop{} per message ({})\n", i.name, i.robots,
@@ -224,8 +246,9 @@ int analyzeMission(const AnalyzeOptions& given, const BuiltModel& built) {
       std::cout << header;
       for (std::size_t t = 1; t < i.within[0].size(); ++t) {
         if (t > 1 && (t - 1) % 4 == 0) std::cout << "\n" << std::string(header.size(), ' ');
-        const std::string lo = fmt::format("{:.6f}", i.within[0][t]), hi = fmt::format("{:.6f}", i.within[1][t]);
-        std::cout << fmt::format("  {:>3}: {}", t, lo == hi ? hi : lo + ".." + hi);
+        const std::string lo = i.sampled ? fmt::format("{:.6f}", i.within[0][t]) : probabilityText(i.within[0][t]);
+        const std::string hi = i.sampled ? fmt::format("{:.6f}", i.within[1][t]) : probabilityText(i.within[1][t]);
+        std::cout << fmt::format("  {:>3}: {}", t, lo == hi ? hi : lo + (lo.find(' ') != std::string::npos || hi.find(' ') != std::string::npos ? " .. " : "..") + hi);
       }
       std::cout << "\n";
     }
@@ -240,7 +263,7 @@ int analyzeMission(const AnalyzeOptions& given, const BuiltModel& built) {
     }
     const std::string title = fmt::format("P(every robot knows within t rounds), loss {:g} - {}", *options.lossProb, options.model.input);
     if (!writeAtomically(*options.svg, probabilityChartSvg(series, title, "t (gossip rounds)"))) {
-      std::cerr << "semo-verify: error: cannot write '" << *options.svg << "'\n";
+      std::cerr << errorPrefix() << "cannot write '" << *options.svg << "'\n";
       return kBadInput;
     }
   }

@@ -30,7 +30,7 @@ bool isIrFile(const std::string& path) { return std::filesystem::path(path).exte
 
 }  // namespace
 
-std::unique_ptr<BuiltModel> buildModel(const ModelInput& in, ProgressLine* line) {
+std::unique_ptr<BuiltModel> buildModel(const ModelInput& in, ProgressLine* line, bool warnings) {
   auto out = std::make_unique<BuiltModel>();
   const auto started = std::chrono::steady_clock::now();
   DiagnosticEngine diags(out->sources);
@@ -47,7 +47,7 @@ std::unique_ptr<BuiltModel> buildModel(const ModelInput& in, ProgressLine* line)
       diags.error({}, "--crash, --loss and --fair-loss/--unfair-loss apply to missions; an IR file states its own assumptions");
     }
   } else if (!in.strategy) {
-    diags.error({}, "checking a mission needs --strategy (or give an .ir file)");
+    diags.error({}, "a mission needs its strategy: add " + strategyExample(in.input) + "; an .ir file needs none");
   } else if ((out->mission = loadMission({in.input, *in.strategy, in.robotsDir}, out->sources, diags))) {
     TranslationOptions options;
     options.crashOverride = in.crash;
@@ -63,7 +63,7 @@ std::unique_ptr<BuiltModel> buildModel(const ModelInput& in, ProgressLine* line)
   }
   if (line != nullptr) line->pause();
   diags.sortByPosition();
-  diags.print(std::cerr);
+  if (warnings || diags.hasErrors()) diags.print(std::cerr);
   if (diags.hasErrors() || !out->model) return nullptr;
   out->buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return out;
@@ -131,8 +131,9 @@ void announceSearch(const BuiltModel& built, const CheckOptions& o, ProgressLine
   const std::string symmetry = o.symmetry ? ", one state per ordering of interchangeable robots" : "";
   const std::string explicitSearch = "a breadth-first search of the states (at most " + withThousands(o.maxStates) +
                                     (o.maxDepth != UINT32_MAX ? ", to depth " + std::to_string(o.maxDepth) : std::string()) + symmetry + ")";
+  const std::string cone = o.coneSeconds > 0 ? fmt::format(", then on its exact cone (up to {} s of processor time: --cone-seconds)", o.coneSeconds) : "";
   const std::string ltl = o.safetyOnly || m.properties.empty() ? std::string()
-                          : o.slicing ? "; then each LTL property on its product, searched whole if the state space is small, else on slices of the model refined by counterexamples"
+                          : o.slicing ? "; then each LTL property on its product, searched whole if the state space is small, else on slices of the model refined by counterexamples" + cone
                                       : "; then each LTL property on its product with the whole model";
   if (o.engine == "counting") {
     text += "the counter abstraction: the robots of the team counted per local state";
@@ -201,7 +202,7 @@ int runCheck(const CheckOptions& options) {
     return kBadInput;
   }
   if (options.propsFile && globs.empty()) {
-    std::cerr << "semo-verify: error: " << *options.propsFile << " names no property\n";
+    std::cerr << errorPrefix() << *options.propsFile << " names no property\n";
     return kBadInput;
   }
   std::vector<Output> outputs;
@@ -223,7 +224,7 @@ int runCheck(const CheckOptions& options) {
     try {
       selected = checker::selectProperties(*built->model, globs);
     } catch (const std::invalid_argument& e) {
-      std::cerr << "semo-verify: error: " << e.what() << "\n";
+      std::cerr << errorPrefix() << e.what() << "\n";
       return kBadInput;
     }
     verify.propertyGlobs = globs;
@@ -248,7 +249,7 @@ int runCheck(const CheckOptions& options) {
                                    std::pair{options.junit, options.junit ? junitXml(*report, *built->model, options.model.input) : std::string()},
                                    std::pair{options.sarif, options.sarif ? checkSarif(*report, *built->model) : std::string()}}) {
     if (path && !writeAtomically(*path, text)) {
-      std::cerr << "semo-verify: error: cannot write '" << *path << "'\n";
+      std::cerr << errorPrefix() << "cannot write '" << *path << "'\n";
       return kBadInput;
     }
   }
@@ -258,10 +259,10 @@ int runCheck(const CheckOptions& options) {
       if (p.counterexample && first == nullptr) first = &p;
     }
     if (first == nullptr) {
-      std::cerr << "semo-verify: note: no counterexample to draw: " << *options.msc << " not written\n";
+      std::cerr << notePrefix() << "no counterexample to draw: " << *options.msc << " not written\n";
     } else if (!writeAtomically(*options.msc, sequenceChartSvg(*built->model, *first->counterexample,
                                                                "counterexample for " + first->name + " - " + options.model.input))) {
-      std::cerr << "semo-verify: error: cannot write '" << *options.msc << "'\n";
+      std::cerr << errorPrefix() << "cannot write '" << *options.msc << "'\n";
       return kBadInput;
     }
   }
@@ -299,11 +300,11 @@ int runExport(const ExportOptions& options) {
   line.phase("writing the model as " + (options.format == "ir" ? std::string("IR") : options.format == "prism" ? std::string("PRISM") : std::string("Promela")));
   const ir::Model& model = *built->model;
   if ((options.spinBreadthFirst || options.spinLiveness) && options.format != "promela") {
-    std::cerr << "semo-verify: error: --spin-bfs and --spin-ltl apply to --promela only\n";
+    std::cerr << errorPrefix() << "--spin-bfs and --spin-ltl apply to --promela only\n";
     return kBadInput;
   }
   if (options.properties && options.format != "prism") {
-    std::cerr << "semo-verify: error: --props applies to --prism only\n";
+    std::cerr << errorPrefix() << "--props applies to --prism only\n";
     return kBadInput;
   }
   std::string text, properties;
@@ -326,7 +327,7 @@ int runExport(const ExportOptions& options) {
   if (!options.output) std::cout << text;
   for (const auto& [path, content] : {std::pair{options.output, &text}, std::pair{options.properties, &properties}}) {
     if (path && !writeAtomically(*path, *content)) {
-      std::cerr << "semo-verify: error: cannot write '" << *path << "'\n";
+      std::cerr << errorPrefix() << "cannot write '" << *path << "'\n";
       return kBadInput;
     }
   }

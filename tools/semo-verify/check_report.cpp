@@ -1,5 +1,10 @@
 // A Report (checker/verify.hpp) as `check` prints it: text for people, JSON for tools (specs/trace.md).
+#include <algorithm>
+#include <regex>
+#include <set>
 #include <sstream>
+
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
@@ -63,10 +68,12 @@ void counterexamples(std::string& out, const checker::Report& r, const ir::Model
 
 }  // namespace
 
-std::string fmtSeconds(double seconds) {
-  std::ostringstream out;
-  out << seconds;
-  return out.str();
+std::string durationText(double seconds) {
+  const double ms = seconds * 1000;
+  if (ms < 999.5) return fmt::format("{:.3g} ms", ms);
+  if (seconds < 59.95) return fmt::format("{:.3g} s", seconds);
+  const double minutes = seconds / 60;
+  return minutes < 999.5 ? fmt::format("{:.3g} min", minutes) : fmt::format("{:.0f} min", minutes);
 }
 
 std::string reportText(const checker::Report& r, const ir::Model& model, const std::string& input, bool bmcOnly) {
@@ -75,8 +82,8 @@ std::string reportText(const checker::Report& r, const ir::Model& model, const s
   const checker::SearchResult& s = r.safety;
   if (r.engine == checker::Engine::Smt) {
     out += "engine:      smt (Z3): bounded model checking to depth " + std::to_string(r.smt->bmcDepth) +
-           (bmcOnly ? " only (--bmc-only)" : ", then k-induction and IC3") + ", " + fmtSeconds(s.seconds) + " s\n";
-    if (!r.engineReason.empty()) out += "             (--engine auto: " + r.engineReason + ")\n";
+           (bmcOnly ? " only (--bmc-only)" : ", then k-induction and IC3") + ", " + durationText(s.seconds) + "\n";
+    if (!r.engineReason.empty()) out += "             (chosen: " + r.engineReason + ")\n";
     if (r.smt->lemmasProven > 0) {
       out += "             (the definitions of " + std::to_string(r.smt->lemmasProven) + " team counts proven, then assumed)\n";
     }
@@ -90,10 +97,10 @@ std::string reportText(const checker::Report& r, const ir::Model& model, const s
   if (r.engine == checker::Engine::Counting) {
     const checker::CountingResult& c = *r.counting;
     out += "engine:      counting: the robots of one team counted per local state (0, 1, " + std::to_string(c.threshold) + " or more)";
-    out += r.engineReason.empty() ? "\n" : " (--engine auto: " + r.engineReason + ")\n";
+    out += r.engineReason.empty() ? "\n" : " (chosen: " + r.engineReason + ")\n";
     if (c.applicable) {
       out += "explored:    " + std::to_string(c.robots) + " robots, " + std::to_string(c.localStates) + " local states of one robot, " +
-             std::to_string(c.states) + " abstract states, " + std::to_string(c.transitions) + " transitions (complete), " + fmtSeconds(c.seconds) + " s\n";
+             std::to_string(c.states) + " abstract states, " + std::to_string(c.transitions) + " transitions (complete), " + durationText(c.seconds) + "\n";
     } else {
       out += "explored:    nothing: the counter abstraction does not apply (" + c.why + ")\n";
     }
@@ -102,10 +109,10 @@ std::string reportText(const checker::Report& r, const ir::Model& model, const s
     verdictLines(out, r, Kind::Liveness);
     return out;
   }
-  if (!r.engineReason.empty()) out += "engine:      explicit (--engine auto: " + r.engineReason + ")\n";
+  if (!r.engineReason.empty()) out += "engine:      explicit (chosen: " + r.engineReason + ")\n";
   for (const std::string& c : s.symmetry) out += "symmetry:    interchangeable " + c + "\n";
   out += "explored:    " + std::to_string(s.states) + " states, " + std::to_string(s.transitions) + " transitions, depth " +
-         std::to_string(s.depth) + " (" + (s.complete ? "complete" : "PARTIAL: " + s.limitReached) + "), " + fmtSeconds(s.seconds) + " s\n";
+         std::to_string(s.depth) + " (" + (s.complete ? "complete" : "PARTIAL: " + s.limitReached) + "), " + durationText(s.seconds) + "\n";
   verdictLines(out, r, Kind::Safety);
   if (!model.properties.empty()) {
     const checker::LivenessResult& live = r.liveness;
@@ -117,7 +124,7 @@ std::string reportText(const checker::Report& r, const ir::Model& model, const s
       if (live.reducedProperties > 0) {
         out += " (up to symmetry for " + std::to_string(live.reducedProperties) + " of " + std::to_string(live.properties.size()) + " properties)";
       }
-      out += " (" + (live.complete ? std::string("complete") : "PARTIAL: " + live.limitReached) + "), " + fmtSeconds(live.seconds) + " s\n";
+      out += " (" + (live.complete ? std::string("complete") : "PARTIAL: " + live.limitReached) + "), " + durationText(live.seconds) + "\n";
       out += "fairness:    " + fairnessLine(model) + "\n";
     }
     verdictLines(out, r, Kind::Liveness);
@@ -127,6 +134,37 @@ std::string reportText(const checker::Report& r, const ir::Model& model, const s
   counterexamples(out, r, model);
   return out;
 }
+
+namespace {
+
+// A partial result says what would decide more: the options the unknown verdicts name as what
+// stopped them, a budget to raise or a switch to leave out. Empty when they name none.
+std::string toDecideMore(const checker::Report& r) {
+  static const std::regex option(R"(--[a-z][a-z-]+)");
+  const std::set<std::string> budgets = {"--max-states", "--max-memory", "--max-depth",  "--slice-states",
+                                         "--symbolic-seconds", "--cone-seconds", "--smt-timeout"};
+  const std::set<std::string> switches = {"--safety-only", "--bmc-only", "--no-symbolic", "--no-walks", "--no-slicing"};
+  std::vector<std::string> more, without;
+  auto scan = [&](const std::string& text) {
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), option); it != std::sregex_iterator(); ++it) {
+      const std::string o = it->str();
+      std::vector<std::string>& into = budgets.count(o) != 0 ? more : without;
+      if ((budgets.count(o) != 0 || switches.count(o) != 0) && std::find(into.begin(), into.end(), o) == into.end()) into.push_back(o);
+    }
+  };
+  for (const PropertyVerdict& p : r.properties) {
+    if (p.verdict == checker::Verdict::Unknown) scan(p.coverage);
+  }
+  scan(r.safety.limitReached);
+  scan(r.livenessSkipped);
+  if (more.empty() && without.empty()) return {};
+  std::string out = "to decide:   ";
+  if (!more.empty()) out += "more " + joined(more, ", more ");
+  if (!without.empty()) out += std::string(more.empty() ? "" : "; ") + "without " + joined(without, ", without ");
+  return out + " (each unknown verdict above says what stopped it)\n";
+}
+
+}  // namespace
 
 std::string resultLine(const checker::Report& r) {
   std::size_t proven = 0, violated = 0;
@@ -148,7 +186,8 @@ std::string resultLine(const checker::Report& r) {
   }
   const char* meaning = r.exitCode == 0 ? "every property proven" : r.exitCode == 1 ? "violated" : "partial";
   if (r.exitCode == 3 && unknown.empty() && !r.safety.limitReached.empty()) meaning = "partial: the search stopped at a limit";
-  return out + " \u2014 exit " + std::to_string(r.exitCode) + " (" + meaning + ")\n";
+  const std::string hint = r.exitCode == 3 ? toDecideMore(r) : std::string();
+  return hint + out + " \u2014 exit " + std::to_string(r.exitCode) + " (" + meaning + ")\n";
 }
 
 nlohmann::json reportJson(const checker::Report& r, const ir::Model& model, const ModelInput& in) {

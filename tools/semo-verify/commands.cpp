@@ -111,7 +111,7 @@ int runParse(const ParseOptions& options) {
     printSummaryLine(diags);
     if (!model) return kBadInput;
     if (options.json) {
-      std::cerr << "semo-verify: error: --json prints a mission's syntax tree; an IR file has none (`export --ir` writes IR)\n";
+      std::cerr << errorPrefix() << "--json prints a mission's syntax tree; an IR file has none (`export --ir` writes IR)\n";
       return kBadInput;
     }
     std::cout << options.mission << ": parsed as an IR model: " << plural(model->robots.size(), "robot") << ", "
@@ -140,7 +140,7 @@ int runLint(const LintOptions& options) {
     inputs.insert(inputs.end(), {options.mission, options.strategy, options.robotsDir.value_or("")});
     if (!outputsSpareInputs({{"--sarif", *options.sarif}}, inputs)) return kBadInput;
     if (!writeAtomically(*options.sarif, diagnosticsSarif(sources, diags))) {
-      std::cerr << "semo-verify: error: cannot write '" << *options.sarif << "'\n";
+      std::cerr << errorPrefix() << "cannot write '" << *options.sarif << "'\n";
       return kBadInput;
     }
   }
@@ -205,6 +205,12 @@ std::string wrapText(const std::string& line, std::size_t indent, std::size_t wi
   return out + current + "\n";
 }
 
+namespace {
+bool announceWrites = true;
+}  // namespace
+
+void setAnnounceWrites(bool on) { announceWrites = on; }
+
 bool writeAtomically(const std::string& path, const std::string& text) {
   // The temporary file is new (O_EXCL): a name already taken, perhaps by an input of the run
   // ("out.partial" beside "out"), is never opened, let alone renamed over the output.
@@ -230,6 +236,7 @@ bool writeAtomically(const std::string& path, const std::string& text) {
     std::filesystem::remove(temporary, ec);
     return false;
   }
+  if (announceWrites) std::cerr << programName() << ": wrote " << path << "\n";
   return true;
 }
 
@@ -256,11 +263,11 @@ bool outputsSpareInputs(const std::vector<Output>& outputs, const std::vector<st
     // Where it cannot be written, nothing is: checked for every output before any is written.
     const fs::path folder = fs::path(out.path).parent_path().empty() ? fs::path(".") : fs::path(out.path).parent_path();
     if (fs::is_directory(out.path, ec)) {
-      std::cerr << "semo-verify: error: " << out.flag << " '" << out.path << "' is a folder; give a file name\n";
+      std::cerr << errorPrefix() << out.flag << " '" << out.path << "' is a folder; give a file name\n";
       return false;
     }
     if (!out.inNewFolder && !fs::is_directory(folder, ec)) {
-      std::cerr << "semo-verify: error: " << out.flag << " '" << out.path << "': there is no folder '" << folder.string()
+      std::cerr << errorPrefix() << out.flag << " '" << out.path << "': there is no folder '" << folder.string()
                 << "' to write it in\n";
       return false;
     }
@@ -268,7 +275,7 @@ bool outputsSpareInputs(const std::vector<Output>& outputs, const std::vector<st
     for (const std::string& in : files) {
       std::error_code same;
       if (fs::equivalent(out.path, in, same) && !same) {
-        std::cerr << "semo-verify: error: " << out.flag << " '" << out.path << "' is an input of this run (" << in
+        std::cerr << errorPrefix() << out.flag << " '" << out.path << "' is an input of this run (" << in
                   << "): semo never writes over its inputs; choose another file\n";
         return false;
       }

@@ -12,6 +12,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "semo/checker/verify.hpp"
+#include "semo/frontend/diagnostics.hpp"
 #include "semo/frontend/source.hpp"
 #include "semo/runtime/tables.hpp"
 #include "semo/semantics/ir.hpp"
@@ -29,6 +30,15 @@ namespace semo::cli {
 
 // The version every output names (--version, certificates).
 inline constexpr const char* kToolVersion = "0.1.0";
+
+// What a message without a file position starts with: "semo-verify check: error: " (the program
+// name is set by main once the command is known).
+inline std::string errorPrefix() { return programName() + ": error: "; }
+inline std::string notePrefix() { return programName() + ": note: "; }
+
+// How to give a mission's strategy, for an error that lacks it: the one next to the mission when
+// there is one.
+std::string strategyExample(const std::string& mission);
 
 // 4: a replay's running team departed from the counterexample (a bug of semo, never of the mission).
 enum ExitCode { kOk = 0, kViolated = 1, kBadInput = 2, kLimit = 3, kDiverged = 4 };
@@ -69,12 +79,14 @@ struct CheckOptions {
   std::uint64_t walkSeed = 1;   // LivenessOptions::walkSeed
   std::uint64_t sliceStates = checker::LivenessOptions{}.sliceStates;
   double symbolicSeconds = checker::LivenessOptions{}.symbolicSeconds;
-  double coneSeconds = checker::LivenessOptions{}.coneSeconds;
+  // The exact cone is tried by default (the library's default leaves it out): without it, an LTL
+  // property that no slice decides stays unknown, as scouting's mode_agreement does.
+  double coneSeconds = 600;
   bool safetyOnly = false;
   unsigned threads = 0;  // 0: one per core
   std::uint64_t maxMemoryMiB = 8192;
   bool json = false;
-  std::string engine = "explicit";
+  std::string engine = "auto";  // the best answer without options: counting, explicit or smt, as the model allows
   bool bmcOnly = false;        // smt: bounded model checking only, no unbounded proofs
   std::optional<std::string> traceOut;  // --trace-out: the verdicts and counterexamples as JSON, kept
   std::optional<std::string> junit, sarif;  // the verdicts for CI: JUnit XML, SARIF 2.1.0
@@ -193,7 +205,8 @@ struct BuiltModel {
 class ProgressLine;
 // Diagnostics are printed; null on error. `line`, if given, is told the phase (reading,
 // translating) for a long build.
-std::unique_ptr<BuiltModel> buildModel(const ModelInput& in, ProgressLine* line = nullptr);
+// `warnings`: print lint's warnings too (show, reading a model checked before, prints only errors).
+std::unique_ptr<BuiltModel> buildModel(const ModelInput& in, ProgressLine* line = nullptr, bool warnings = true);
 // The options of `check` as the verification facade takes them; `line`, if given, gets the
 // searches' phases and counts.
 checker::VerifyOptions verifyOptions(const CheckOptions& options, ProgressLine* line = nullptr);
@@ -202,8 +215,8 @@ void announceSearch(const BuiltModel& built, const CheckOptions& options, Progre
 // A Report as `check` prints it (check_report.cpp).
 std::string reportText(const checker::Report& report, const ir::Model& model, const std::string& input, bool bmcOnly);
 nlohmann::json reportJson(const checker::Report& report, const ir::Model& model, const ModelInput& in);
-// Seconds as a stream prints a double ("0.00209936").
-std::string fmtSeconds(double seconds);
+// A duration for people, three significant digits: "2.1 ms", "12.3 s", "2.08 min".
+std::string durationText(double seconds);
 // 1234567 as "1,234,567" (no locale: the machine may have none but C).
 std::string withThousands(std::uint64_t n);
 // For CI (check_formats.cpp): JUnit XML (a test case per property), SARIF 2.1.0 of the verdicts
@@ -226,8 +239,11 @@ std::string defaultWorldPath(const std::string& mission);
 // assumed would not be what runs. One sentence per such value.
 std::vector<std::string> teamSourceProblems(const model::MissionModel& mission, const runtime::World& world);
 
-// Writes through a temporary file and renames it, so that a failure never leaves half a file.
+// Writes through a temporary file and renames it, so that a failure never leaves half a file; says
+// on stderr which file it wrote ("semo-verify simulate: wrote run.svg") unless told not to (a
+// --json run keeps stderr for errors).
 bool writeAtomically(const std::string& path, const std::string& text);
+void setAnnounceWrites(bool on);
 // One line of text (no newline in it) within `width` columns, ending in a newline: words that do
 // not fit move to continuation lines indented by `indent`; a word longer than a line stays whole.
 std::string wrapText(const std::string& line, std::size_t indent, std::size_t width = 100);
@@ -257,6 +273,15 @@ std::string firstTableDifference(const runtime::MissionTables& expected, const r
 
 // A period p/q as the sdf commands print it ("3" or "7/2").
 std::string periodText(const sdf::Period& p);
+
+// `world MISSION --strategy S`: a starting world file for the mission (runtime/WORLD.md), to edit.
+struct WorldOptions {
+  std::string mission, strategy;
+  std::optional<std::string> robotsDir;
+  std::optional<std::string> output;  // default: stdout
+  std::string layout = "ring";        // ring or grid
+};
+int runWorld(const WorldOptions& options);
 
 int runParse(const ParseOptions& options);
 int runSdf(const SdfOptions& options);

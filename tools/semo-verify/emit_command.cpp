@@ -95,12 +95,12 @@ bool writeTree(const fs::path& dir, const std::vector<codegen::GeneratedFile>& f
 int runEmit(const EmitOptions& options) {
   const ModelInput& in = options.check.model;
   if (!in.strategy || in.input.ends_with(".ir")) {
-    std::cerr << "semo-verify emit: error: emit needs a mission and its strategy (an IR file has no robots to generate)\n";
+    std::cerr << errorPrefix() << "emit needs a mission and its strategy (an IR file has no robots to generate)\n";
     return kBadInput;
   }
   if (!in.crashPerTeam.empty()) {
     // The certificate records one --crash for every team (certify rebuilds the model from it).
-    std::cerr << "semo-verify emit: error: --crash N:TEAM is for check; emit takes --crash N for every team, or the verify block's "
+    std::cerr << errorPrefix() << "--crash N:TEAM is for check; emit takes --crash N for every team, or the verify block's "
                  "`assume crash <= N in TEAM`\n";
     return kBadInput;
   }
@@ -114,7 +114,7 @@ int runEmit(const EmitOptions& options) {
     const fs::path a = fs::weakly_canonical(input, ec), o = fs::weakly_canonical(options.out, ec);
     const auto [end, _] = std::mismatch(o.begin(), o.end(), a.begin(), a.end());
     if (end == o.end()) {
-      std::cerr << "semo-verify: error: --out '" << options.out << "' holds the input '" << input << "', which emit would replace\n";
+      std::cerr << errorPrefix() << "--out '" << options.out << "' holds the input '" << input << "', which emit would replace\n";
       return kBadInput;
     }
   }
@@ -149,6 +149,14 @@ int runEmit(const EmitOptions& options) {
   eo.safetyOnly = options.check.safetyOnly;
   eo.bmcOnly = options.check.bmcOnly;
   eo.proofTimeoutMs = options.proofTimeoutMs;
+  eo.slicing = options.check.slicing;
+  eo.slicesFirst = options.check.slicesFirst;
+  eo.sliceStates = options.check.sliceStates;
+  eo.symbolic = options.check.symbolic;
+  eo.symbolicSeconds = options.check.symbolicSeconds;
+  eo.coneSeconds = options.check.coneSeconds;
+  eo.walks = options.check.walks;
+  eo.walkSeed = options.check.walkSeed;
   eo.toolVersion = kToolVersion;
   eo.uncertified = options.uncertified;
   codegen::Emitted emitted = codegen::emit(*built->mission, *built->translation, built->sources, *report, eo);
@@ -162,7 +170,7 @@ int runEmit(const EmitOptions& options) {
   }
   std::string error;
   if (!writeTree(options.out, emitted.files, error)) {
-    std::cerr << "semo-verify: error: " << error << "\n";
+    std::cerr << errorPrefix() << error << "\n";
     return kBadInput;
   }
   std::size_t rows = 0;

@@ -158,7 +158,7 @@ int runGraph(const GraphOptions& options) {
     dot = modesDot(*mission);
   } else if (options.what == "groups") {
     if (mission->groupBlocks.empty()) {
-      std::cerr << "semo-verify: error: " << options.mission << " has no group block to draw\n";
+      std::cerr << errorPrefix() << options.mission << " has no group block to draw\n";
       return kBadInput;
     }
     dot = groupsDot(*mission);
@@ -170,7 +170,7 @@ int runGraph(const GraphOptions& options) {
     if (options.robot) {
       std::erase_if(*graphs, [&](const sdf::TaskGraph& g) { return g.robot != *options.robot; });
       if (graphs->empty()) {
-        std::cerr << "semo-verify: error: no robot named '" << *options.robot << "'\n";
+        std::cerr << errorPrefix() << "no robot named '" << *options.robot << "'\n";
         return kBadInput;
       }
     }
@@ -181,7 +181,7 @@ int runGraph(const GraphOptions& options) {
   if (!options.output) {
     std::cout << dot;
   } else if (!writeAtomically(*options.output, dot)) {
-    std::cerr << "semo-verify: error: cannot write '" << *options.output << "'\n";
+    std::cerr << errorPrefix() << "cannot write '" << *options.output << "'\n";
     return kBadInput;
   }
   return kOk;

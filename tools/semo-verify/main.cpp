@@ -16,20 +16,54 @@ const CLI::Validator kSeed(
 
 namespace {
 
+// Every command with an example that runs from the repository's top folder: `--help` shows them,
+// and an error in a command's options ends with its example.
+struct CommandExample {
+  const char* name;
+  const char* example;
+};
+constexpr CommandExample kExamples[] = {
+    {"parse", "semo-verify parse specs/fig2.semo"},
+    {"lint", "semo-verify lint specs/examples/swarm/swarm3.semo --strategy specs/examples/swarm/strategy.xml"},
+    {"check", "semo-verify check specs/examples/swarm/swarm3.semo --strategy specs/examples/swarm/strategy.xml"},
+    {"show", "semo-verify show cex.json --robot mapper   (cex.json from check --trace-out cex.json)"},
+    {"replay", "semo-verify replay cex.json --svg cex.svg   (cex.json from check --trace-out cex.json)"},
+    {"graph", "semo-verify graph specs/examples/swarm/swarm3.semo --strategy specs/examples/swarm/strategy.xml --modes -o modes.dot"},
+    {"sdf", "semo-verify sdf specs/examples/swarm/swarm3.semo --strategy specs/examples/swarm/strategy.xml"},
+    {"analyze", "semo-verify analyze specs/examples/swarm/swarm3.semo --strategy specs/examples/swarm/strategy.xml --loss-prob 0.2"},
+    {"simulate", "semo-verify simulate specs/examples/scouting/scouting.semo --strategy specs/examples/scouting/strategy.xml --crash leader@5s"},
+    {"emit", "semo-verify emit specs/examples/swarm/swarm3.semo --strategy specs/examples/swarm/strategy.xml --out robots"},
+    {"certify", "semo-verify certify robots"},
+    {"export", "semo-verify export specs/examples/swarm/swarm3.semo --strategy specs/examples/swarm/strategy.xml --promela -o swarm3.pml"},
+    {"world", "semo-verify world specs/examples/swarm/swarm1000.semo --strategy specs/examples/swarm/strategy.xml -o swarm1000.world.json"},
+};
+
+const char* exampleOf(const std::string& command) {
+  for (const CommandExample& e : kExamples) {
+    if (command == e.name) return e.example;
+  }
+  return nullptr;
+}
+
+// The command a failed parse was in ("" before one was named).
+std::string commandOf(const CLI::App& app) {
+  for (const CLI::App* sub : app.get_subcommands()) return sub->get_name();
+  return {};
+}
+
 int run(int argc, char** argv) {
   CLI::App app{"semo-verify: check a multi-robot mission (SeMo language) before it is deployed"};
   app.set_version_flag("--version", std::string("semo-verify ") + semo::cli::kToolVersion);
   app.require_subcommand(1);
-  app.footer("Exit codes: 0 clean, 1 property violated, 2 bad input, 3 resource limit reached.\n"
-             "The language is described in specs/language.md, strategies in specs/strategy.md.");
+
 
   semo::cli::ParseOptions parse;
-  CLI::App* parseCmd = app.add_subcommand("parse", "Parse a mission and print a summary of its AST (or the AST as JSON)");
+  CLI::App* parseCmd = app.add_subcommand("parse", "Syntax check: a summary of the mission, or its AST as JSON");
   parseCmd->add_option("mission", parse.mission, "Mission file (.semo)")->required();
   parseCmd->add_flag("--json", parse.json, "Print the whole AST as JSON");
 
   semo::cli::LintOptions lint;
-  CLI::App* lintCmd = app.add_subcommand("lint", "Parse and elaborate a mission against its strategy and robots; report every diagnostic");
+  CLI::App* lintCmd = app.add_subcommand("lint", "Resolve every name against the strategy and the robots; every mistake with its position");
   lintCmd->add_option("mission", lint.mission, "Mission file (.semo)")->required();
   lintCmd->add_option("--strategy,-s", lint.strategy, "Strategy file (.xml)")->required();
   lintCmd->add_option("--robots,-r", lint.robotsDir,
@@ -114,7 +148,8 @@ int run(int argc, char** argv) {
         ->check(CLI::Range(1.0, 86400.0));
     cmd->add_option("--cone-seconds", check.coneSeconds,
                     "Processor time for an LTL property the slices leave undecided: its exact cone of influence, crashes included, "
-                    "searched on every settling world (default 0: not tried; scouting's mode_agreement needs about 70 on two threads, 140 on one)")
+                    "searched on every settling world (default " + std::to_string(static_cast<int>(check.coneSeconds)) +
+                        "; 0: not tried; a proof ends when it is done, so more costs nothing where it is not needed)")
         ->check(CLI::Range(0.0, 86400.0));
     cmd->add_option("--slice-states", check.sliceStates,
                     "Product states one slice of the model may take (default 50000; --max-states, if lower, bounds it too)")
@@ -124,11 +159,12 @@ int run(int argc, char** argv) {
         ->check(CLI::Range(1u, 256u));
     cmd->add_flag("--safety-only", check.safetyOnly, "Check the invariants and deadlock freedom only, not the LTL properties");
     cmd->add_option("--engine", check.engine,
-                    "explicit: state-space search (default); smt: Z3, bounded model checking to --max-depth (default 5), "
-                    "then k-induction and IC3 for unbounded proofs, safety properties only; auto: explicit when the state "
+                    "auto (default): a team with counts (more than 8 robots) first by counting, then explicit when the state "
                     "space fits its budget (2,000,000 states, whatever --max-depth says), else smt (with --max-depth for BMC); "
-                    "a team with counts (more than 8 robots) is first tried by counting; counting: the counter abstraction only, "
-                    "robots of one team counted per local state (proves, never refutes)")
+                    "the LTL properties on slices, then on their exact cones. explicit: state-space search only, to --max-states; "
+                    "smt: Z3, bounded model checking to --max-depth (default 5), then k-induction and IC3 for unbounded proofs "
+                    "(the LTL properties on slices); counting: the counter abstraction only, robots of one team counted per "
+                    "local state (proves, never refutes)")
         ->check(CLI::IsMember({"explicit", "smt", "auto", "counting"}));
     cmd->add_flag("--bmc-only", check.bmcOnly, "With the smt engine: bounded model checking only (no k-induction, no IC3)");
     cmd->add_option("--smt-timeout", check.smtTimeoutS,
@@ -136,7 +172,7 @@ int run(int argc, char** argv) {
   };
 
   semo::cli::CheckOptions check;
-  CLI::App* checkCmd = app.add_subcommand("check", "Prove the mission's safety properties, or print a counterexample");
+  CLI::App* checkCmd = app.add_subcommand("check", "Prove the mission's properties, or print a counterexample");
   addModelOptions(checkCmd, check.model);
   addEngineOptions(checkCmd, check);
   checkCmd->add_flag("--json", check.json, "Print the verdicts and counterexamples as JSON (specs/trace.md)");
@@ -157,7 +193,8 @@ int run(int argc, char** argv) {
                        "block; # starts a comment");
 
   semo::cli::ShowOptions show;
-  CLI::App* showCmd = app.add_subcommand("show", "Print a counterexample of `check --json` or `check --trace-out` again, as check prints it, "
+  CLI::App* showCmd = app.add_subcommand("show", "Print a kept counterexample again: for one robot, or with every variable");
+  showCmd->footer("Print a counterexample of `check --json` or `check --trace-out` again, as check prints it, "
                                                  "for one robot, or with every variable after each step");
   showCmd->add_option("trace", show.trace, "A `check --json` / `--trace-out` file")->required();
   showCmd->add_option("mission", show.model.input, "Mission or IR file (default: the trace file's \"input\")");
@@ -172,7 +209,8 @@ int run(int argc, char** argv) {
                              "another path)");
 
   semo::cli::GraphOptions graph;
-  CLI::App* graphCmd = app.add_subcommand("graph", "Draw the mission for Graphviz (dot -Tsvg): each team's mode machine, each group block "
+  CLI::App* graphCmd = app.add_subcommand("graph", "Draw the mode machines, group blocks or task graphs for Graphviz");
+  graphCmd->footer("Draw the mission for Graphviz (dot -Tsvg): each team's mode machine, each group block "
                                                    "with its arms and candidate robots, or each robot's task graph by scenario with "
                                                    "execution times, rates and proven capacities");
   graphCmd->add_option("mission", graph.mission, "Mission file (.semo)")->required();
@@ -188,7 +226,8 @@ int run(int argc, char** argv) {
   graphCmd->add_option("--output,-o", graph.output, "Write the dot text to this file (default: standard output)");
 
   semo::cli::EmitOptions emit;
-  CLI::App* emitCmd = app.add_subcommand("emit", "Verify the mission, then write one C++ program per robot, a CMake project that builds them "
+  CLI::App* emitCmd = app.add_subcommand("emit", "Verify, then write one C++ program per robot, a CMake project and certificate.json");
+  emitCmd->footer("Verify the mission, then write one C++ program per robot, a CMake project that builds them "
                                                  "against semo_runtime, and certificate.json (specs/certificate.md); refuses (exit 1) "
                                                  "unless every property and every buffer bound is proven");
   addModelOptions(emitCmd, emit.check.model);
@@ -199,7 +238,8 @@ int run(int argc, char** argv) {
   emitCmd->add_option("--proof-timeout", emit.proofTimeoutMs, "Give up one Z3 buffer-bound query after this many milliseconds (default 10000)");
 
   semo::cli::CertifyOptions certify;
-  CLI::App* certifyCmd = app.add_subcommand("certify", "Check a tree `emit` wrote without trusting it: the hashes of its inputs and files, and "
+  CLI::App* certifyCmd = app.add_subcommand("certify", "Check an emitted tree without trusting it");
+  certifyCmd->footer("Check a tree `emit` wrote without trusting it: the hashes of its inputs and files, and "
                                                        "its tables read back and compared with the verified model's projection, made again "
                                                        "from the inputs (exit 0 valid and certified, 1 a difference, 2 bad input, 3 valid but uncertified)");
   certifyCmd->add_option("dir", certify.dir, "The folder emit wrote")->required();
@@ -207,7 +247,8 @@ int run(int argc, char** argv) {
   certifyCmd->add_flag("--recheck", certify.recheck, "Also verify the mission again and compare every verdict with the certificate's");
 
   semo::cli::ExportOptions exportOptions;
-  CLI::App* exportCmd = app.add_subcommand("export", "Write the mission's formal model as IR text or Promela");
+  CLI::App* exportCmd = app.add_subcommand("export", "Write the formal model as IR text, Promela (SPIN) or PRISM");
+  exportCmd->footer("The mission's formal model as IR text (specs/ir.md), Promela for SPIN, or the PRISM language for PRISM and Storm");
   addModelOptions(exportCmd, exportOptions.model);
   auto* formats = exportCmd->add_option_group("format", "What to write");
   formats->add_flag_callback("--ir", [&] { exportOptions.format = "ir"; }, "The IR in its text form (specs/ir.md)");
@@ -224,7 +265,8 @@ int run(int argc, char** argv) {
   exportCmd->add_option("--props", exportOptions.properties, "With --prism: write the properties (P=?, R=?) to this file");
 
   semo::cli::SdfOptions sdfOptions;
-  CLI::App* sdfCmd = app.add_subcommand("sdf", "Build each robot's dataflow task graph from a mission, or read one graph; analyse every "
+  CLI::App* sdfCmd = app.add_subcommand("sdf", "Each robot's dataflow task graph, or one graph: schedule, period, proven buffer bounds");
+  sdfCmd->footer("Build each robot's dataflow task graph from a mission, or read one graph; analyse every "
                                                 "scenario: consistency, deadlock freedom, schedule, throughput, proven buffer bounds");
   sdfCmd->add_option("mission", sdfOptions.mission, "Mission file (.semo), with --strategy: one task graph per robot");
   sdfCmd->add_option("--strategy,-s", sdfOptions.strategy, "Strategy file (.xml), for a mission");
@@ -246,7 +288,8 @@ int run(int argc, char** argv) {
 
   semo::cli::SimulateOptions simulate;
   std::string seeds;
-  CLI::App* simulateCmd = app.add_subcommand("simulate", "Run the verified mission in the simulator (simulated time, injected crashes and "
+  CLI::App* simulateCmd = app.add_subcommand("simulate", "Run the verified mission in a simulated world, with crashes and message loss");
+  simulateCmd->footer("Run the verified mission in the simulator (simulated time, injected crashes and "
                                                          "message loss) and summarise what happened (specs/runtime.md)");
   simulateCmd->add_option("mission", simulate.mission, "Mission file (.semo)")->required();
   simulateCmd->add_option("--strategy,-s", simulate.strategy, "Strategy file (.xml)")->required();
@@ -273,7 +316,8 @@ int run(int argc, char** argv) {
                         "Replay every step on the verified model as it happens; stop at the first step the model does not allow");
 
   semo::cli::ReplayOptions replay;
-  CLI::App* replayCmd = app.add_subcommand("replay", "Make a counterexample of `check --json` happen in the running team: the simulator takes its "
+  CLI::App* replayCmd = app.add_subcommand("replay", "Make a counterexample happen in the simulated team, step for step");
+  replayCmd->footer("Make a counterexample of `check --json` happen in the running team: the simulator takes its "
                                                      "steps one for one and shows the violation at the same step (specs/runtime.md)");
   replayCmd->add_option("trace", replay.trace, "A `check --json` output, or one counterexample object (specs/trace.md)")->required();
   replayCmd->add_option("mission", replay.model.input, "Mission file (default: the trace file's \"input\")");
@@ -293,7 +337,8 @@ int run(int argc, char** argv) {
 
   semo::cli::AnalyzeOptions analyze;
   CLI::App* analyzeCmd = app.add_subcommand(
-      "analyze", "How likely and how soon: each `eventually {p}` property of the model, on its reachable states read as a Markov decision "
+      "analyze", "How likely and how soon: probabilities and expected times");
+  analyzeCmd->footer("How likely and how soon: each `eventually {p}` property of the model, on its reachable states read as a Markov decision "
                  "process (specs/quantitative.md): P(within t steps), P(eventually), the expected steps (or rewards)");
   addModelOptions(analyzeCmd, analyze.model);
   analyzeCmd->add_option("--rounds", analyze.rounds, "Horizon of P(within t), in steps of the model (default 20)")->check(CLI::Range(1, 100000));
@@ -323,6 +368,30 @@ int run(int argc, char** argv) {
   analyzeCmd->add_flag("--json", analyze.json, "Print the results as JSON");
   analyzeCmd->add_option("--svg", analyze.svg, "Write a chart of P(within t) against t");
 
+  semo::cli::WorldOptions worldOptions;
+  CLI::App* worldCmd = app.add_subcommand("world", "Write a starting world file for a mission, to edit and simulate in");
+  worldCmd->footer("Write a world file (runtime/WORLD.md) that `simulate` runs the mission in as it is: the robots in a ring or a "
+                   "grid, spaced by their footprints, a place per place the mission names, a site per fact of its group services' "
+                   "knowledge, a constant per sensed value it reads, and notes saying what to edit");
+  worldCmd->add_option("mission", worldOptions.mission, "Mission file (.semo)")->required();
+  worldCmd->add_option("--strategy,-s", worldOptions.strategy, "Strategy file (.xml)")->required();
+  worldCmd->add_option("--robots,-r", worldOptions.robotsDir, "Folder of URDF files");
+  worldCmd->add_option("--output,-o", worldOptions.output, "Write the world to this file (default: print it)");
+  worldCmd->add_option("--layout", worldOptions.layout, "How the robots stand: ring (default; facing out) or grid (ranks facing +x)")
+      ->check(CLI::IsMember({"ring", "grid"}));
+
+  for (CLI::App* sub : app.get_subcommands({})) {
+    if (const char* example = exampleOf(sub->get_name())) {
+      const std::string details = sub->get_footer();
+      sub->footer((details.empty() ? std::string() : details + "\n\n") + "Example:\n  " + example);
+    }
+  }
+  // After the commands: a footer set before them is every command's too.
+  std::string footer = "Examples (from the repository's top folder):\n";
+  for (const CommandExample& e : kExamples) footer += std::string("  ") + e.example + "\n";
+  app.footer(footer +
+             "\nExit codes: 0 everything proven, 1 a property violated, 2 bad input, 3 partial (a limit reached).\n"
+             "docs/guide.md describes every command; the language is in specs/language.md, strategies in specs/strategy.md.");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -332,12 +401,27 @@ int run(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);  // prints the message
+    // The command, what is wrong, and an example of the command as it runs.
+    const std::string command = commandOf(app);
+    semo::setProgramName(command.empty() ? "semo-verify" : "semo-verify " + command);
+    const bool unknownCommand = command.empty() && argc > 1 && argv[1][0] != '-';
+    std::cerr << semo::cli::errorPrefix()
+              << (unknownCommand ? "'" + std::string(argv[1]) + "' is not a command" : argc <= 1 ? std::string("give a command") : std::string(e.what()))
+              << "\n";
+    if (const char* example = exampleOf(command)) {
+      std::cerr << "  e.g. " << example << "\n  (semo-verify " << command << " --help lists its options)\n";
+    } else {
+      std::cerr << "  the commands: ";
+      for (const CommandExample& c : kExamples) std::cerr << c.name << (&c == &kExamples[std::size(kExamples) - 1] ? "" : ", ");
+      std::cerr << "\n  (semo-verify --help shows each with an example)\n";
+    }
     return semo::cli::kBadInput;
   }
+  semo::setProgramName("semo-verify " + commandOf(app));
+  semo::cli::setAnnounceWrites(!(lint.json || check.json || certify.json || sdfOptions.json || analyze.json || parse.json));
   // A malformed SEMO_THREADS is said, not quietly replaced by the default.
   if (const std::string why = semo::checker::threadsSettingError(); !why.empty()) {
-    std::cerr << "semo-verify: error: " << why << "\n";
+    std::cerr << semo::cli::errorPrefix() << why << "\n";
     return semo::cli::kBadInput;
   }
   if (*parseCmd) return semo::cli::runParse(parse);
@@ -346,6 +430,7 @@ int run(int argc, char** argv) {
   if (*exportCmd) return semo::cli::runExport(exportOptions);
   if (*replayCmd) return semo::cli::runReplay(replay);
   if (*analyzeCmd) return semo::cli::runAnalyze(analyze);
+  if (*worldCmd) return semo::cli::runWorld(worldOptions);
   if (*simulateCmd) {
     if (!seeds.empty()) {
       const auto dots = seeds.find("..");
@@ -356,11 +441,11 @@ int run(int argc, char** argv) {
         from = std::stoull(seeds.substr(0, dots), &used);
         to = std::stoull(seeds.substr(dots + 2));
       } catch (const std::exception&) {
-        std::cerr << "semo-verify: error: --seeds '" << seeds << "': expected A..B, e.g. 1..100\n";
+        std::cerr << semo::cli::errorPrefix() << "--seeds '" << seeds << "': expected A..B, e.g. 1..100\n";
         return semo::cli::kBadInput;
       }
       if (to < from || to - from >= 1000000) {
-        std::cerr << "semo-verify: error: --seeds '" << seeds << "': B must be at least A, and at most a million runs\n";
+        std::cerr << semo::cli::errorPrefix() << "--seeds '" << seeds << "': B must be at least A, and at most a million runs\n";
         return semo::cli::kBadInput;
       }
       simulate.seed = from;
@@ -375,11 +460,12 @@ int run(int argc, char** argv) {
   if (*sdfCmd) {
     const int inputs = (sdfOptions.mission ? 1 : 0) + (sdfOptions.graphJson ? 1 : 0) + (sdfOptions.sdf3.empty() ? 0 : 1);
     if (inputs != 1) {
-      std::cerr << "semo-verify sdf: give exactly one of: a mission (with --strategy), --graph G.json, --sdf3 G.xml\n";
+      std::cerr << semo::cli::errorPrefix() << "give exactly one of: a mission (with --strategy), --graph G.json, --sdf3 G.xml\n"
+                << "  e.g. " << exampleOf("sdf") << "\n";
       return semo::cli::kBadInput;
     }
     if (sdfOptions.mission && !sdfOptions.strategy) {
-      std::cerr << "semo-verify sdf: a mission needs its strategy (--strategy FILE)\n";
+      std::cerr << semo::cli::errorPrefix() << "a mission needs its strategy: add " << semo::cli::strategyExample(*sdfOptions.mission) << "\n";
       return semo::cli::kBadInput;
     }
     return sdfOptions.sdf3.empty() ? semo::cli::runTaskGraphs(sdfOptions) : semo::cli::runSdf(sdfOptions);

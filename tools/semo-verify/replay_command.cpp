@@ -45,7 +45,7 @@ int runReplay(const ReplayOptions& options) {
   std::string why;
   const FileId file = sources.load(options.trace, why);
   if (file == kNoFile) {
-    std::cerr << "semo-verify: error: " << why << "\n";
+    std::cerr << errorPrefix() << why << "\n";
     return kBadInput;
   }
   std::optional<nlohmann::json> root = parseJsonFile(sources, file, diags);
@@ -56,12 +56,12 @@ int runReplay(const ReplayOptions& options) {
     return kBadInput;
   }
   if (in.input.empty() || !in.strategy) {
-    std::cerr << "semo-verify: error: " << options.trace
+    std::cerr << errorPrefix() << options.trace
               << " does not say which mission and strategy it was found on (a single counterexample object): give MISSION and --strategy\n";
     return kBadInput;
   }
   if (std::filesystem::path(in.input).extension() == ".ir") {
-    std::cerr << "semo-verify: error: " << in.input << " is an IR file: replay runs a mission's robots, and an IR file has none\n";
+    std::cerr << errorPrefix() << in.input << " is an IR file: replay runs a mission's robots, and an IR file has none\n";
     return kBadInput;
   }
   std::optional<model::MissionModel> mission = loadMission({in.input, *in.strategy, in.robotsDir}, sources, diags);
@@ -80,11 +80,11 @@ int runReplay(const ReplayOptions& options) {
   const auto pace = parseDuration(options.pace);
   const auto settle = parseDuration(options.settle);
   if (!pace || *pace <= 0 || *pace > 3600 || !settle || *settle > 86400) {
-    std::cerr << "semo-verify: error: --pace and --settle take a time such as 500ms or 10s (--pace above 0, at most an hour)\n";
+    std::cerr << errorPrefix() << "--pace and --settle take a time such as 500ms or 10s (--pace above 0, at most an hour)\n";
     return kBadInput;
   }
   if (options.loops == 0 || options.loops > 1000) {
-    std::cerr << "semo-verify: error: --loops must be between 1 and 1000\n";
+    std::cerr << errorPrefix() << "--loops must be between 1 and 1000\n";
     return kBadInput;
   }
 
@@ -181,11 +181,11 @@ int runReplay(const ReplayOptions& options) {
     for (const std::string& v : run.summary.violations) std::cout << "  " << v << "\n";
   }
   if (options.traceOut && !writeAtomically(*options.traceOut, runtime::simTraceToJson(run))) {
-    std::cerr << "semo-verify: error: cannot write '" << *options.traceOut << "'\n";
+    std::cerr << errorPrefix() << "cannot write '" << *options.traceOut << "'\n";
     return kBadInput;
   }
   if (options.svg && !writeAtomically(*options.svg, runtime::renderSvg(run))) {
-    std::cerr << "semo-verify: error: cannot write '" << *options.svg << "'\n";
+    std::cerr << errorPrefix() << "cannot write '" << *options.svg << "'\n";
     return kBadInput;
   }
   return reproduced ? kViolated : kDiverged;

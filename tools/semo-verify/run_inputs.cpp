@@ -1,4 +1,4 @@
-// Inputs shared by the commands that run a mission (simulate, replay).
+// Inputs shared by the commands: a mission's strategy and world, durations.
 #include <charconv>
 #include <filesystem>
 
@@ -37,6 +37,13 @@ std::vector<std::string> teamSourceProblems(const model::MissionModel& mission, 
 std::string defaultWorldPath(const std::string& mission) {
   const std::filesystem::path m(mission);
   return (m.parent_path() / (m.stem().string() + ".world.json")).string();
+}
+
+std::string strategyExample(const std::string& mission) {
+  const std::filesystem::path next = std::filesystem::path(mission).parent_path() / "strategy.xml";
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(next, ec)) return "--strategy " + next.string() + " (the strategy next to the mission)";
+  return "--strategy FILE.xml (specs/strategy.md)";
 }
 
 }  // namespace semo::cli

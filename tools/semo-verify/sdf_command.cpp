@@ -38,7 +38,7 @@ int runSdf(const SdfOptions& options) {
   std::string error;
   FileId file = sources.load(options.sdf3, error);
   if (!error.empty()) {
-    std::cerr << "semo-verify: error: " << error << "\n";
+    std::cerr << errorPrefix() << error << "\n";
     return kBadInput;
   }
   std::optional<sdf::Graph> g = sdf::readSdf3(sources, file, diags);
@@ -51,7 +51,7 @@ int runSdf(const SdfOptions& options) {
   // Each rendered only when asked for.
   for (const auto& [path, render] : {std::pair{options.dotOut, &sdf::toGraphviz}, std::pair{options.sdf3Out, &sdf::writeSdf3}}) {
     if (path && !writeAtomically(*path, render(*g))) {
-      std::cerr << "semo-verify: error: cannot write '" << *path << "'\n";
+      std::cerr << errorPrefix() << "cannot write '" << *path << "'\n";
       return kBadInput;
     }
   }

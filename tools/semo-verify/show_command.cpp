@@ -85,7 +85,7 @@ int runShow(const ShowOptions& options) {
   std::string why;
   const FileId file = traceSources.load(options.trace, why);
   if (file == kNoFile) {
-    std::cerr << "semo-verify: error: " << why << "\n";
+    std::cerr << errorPrefix() << why << "\n";
     return kBadInput;
   }
   std::optional<nlohmann::json> root = parseJsonFile(traceSources, file, traceDiags);
@@ -99,17 +99,17 @@ int runShow(const ShowOptions& options) {
     return kBadInput;
   }
   if (in.input.empty()) {
-    std::cerr << "semo-verify: error: " << options.trace << " does not say which model it was found on (a single counterexample "
+    std::cerr << errorPrefix() << options.trace << " does not say which model it was found on (a single counterexample "
               << "object): give the mission (with --strategy) or the IR file\n";
     return kBadInput;
   }
-  std::unique_ptr<BuiltModel> built = buildModel(in);
+  std::unique_ptr<BuiltModel> built = buildModel(in, nullptr, /*warnings=*/false);  // check printed them
   if (!built) return kBadInput;
   const ir::Model& model = *built->model;
   if (options.robot && std::find(model.robots.begin(), model.robots.end(), *options.robot) == model.robots.end()) {
     std::string names;
     for (const std::string& r : model.robots) names += (names.empty() ? "" : ", ") + r;
-    std::cerr << "semo-verify: error: --robot '" << *options.robot << "' is no robot of " << in.input << " (its robots: " << names << ")\n";
+    std::cerr << errorPrefix() << "--robot '" << *options.robot << "' is no robot of " << in.input << " (its robots: " << names << ")\n";
     return kBadInput;
   }
   const checker::Stepper stepper(model);
@@ -127,7 +127,7 @@ int runShow(const ShowOptions& options) {
     if (!outputsSpareInputs({{"--msc", *options.msc}}, inputs)) return kBadInput;
     const std::string name = trace->property.empty() ? std::string("the model error") : trace->property;
     if (!writeAtomically(*options.msc, sequenceChartSvg(model, asChecked, "counterexample for " + name + " - " + in.input))) {
-      std::cerr << "semo-verify: error: cannot write '" << *options.msc << "'\n";
+      std::cerr << errorPrefix() << "cannot write '" << *options.msc << "'\n";
       return kBadInput;
     }
   }

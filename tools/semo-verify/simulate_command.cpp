@@ -5,6 +5,7 @@
 #include <charconv>
 #include <filesystem>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <iostream>
 #include <limits>
 #include <unistd.h>
@@ -119,6 +120,32 @@ void printSummary(const runtime::MissionTables& t, const runtime::SimTrace& trac
 
 }  // namespace
 
+namespace {
+
+// Why `who` names no robot that --crash can crash: a robot of the mission, `leader` (whoever leads
+// the first leader block that has a leader then) or `leader:BLOCK` (a leader block whose name holds
+// BLOCK). Empty when it does.
+std::string crashTargetProblem(const runtime::MissionTables& tables, const std::string& who) {
+  std::vector<std::string> blocks;
+  for (const runtime::LeaderBlockTable& l : tables.leaderBlocks) blocks.push_back(l.name);
+  const std::string listed = blocks.empty() ? std::string("the mission has no leader block") : "its leader blocks: " + fmt::format("{}", fmt::join(blocks, ", "));
+  if (who == "leader") return blocks.empty() ? "there is no leader to crash: " + listed : std::string();
+  if (who.rfind("leader:", 0) == 0) {
+    const std::string block = who.substr(7);
+    const bool found = !block.empty() && std::any_of(blocks.begin(), blocks.end(), [&](const std::string& b) { return b.find(block) != std::string::npos; });
+    return found ? std::string() : "no leader block is named like '" + block + "' (" + listed + ")";
+  }
+  std::vector<std::string> robots;
+  for (const runtime::RobotTable& r : tables.robots) {
+    if (r.name == who) return {};
+    robots.push_back(r.name);
+  }
+  return "the mission has no robot '" + who + "' (its robots: " + fmt::format("{}", fmt::join(robots, ", ")) +
+         "; or leader, leader:BLOCK)";
+}
+
+}  // namespace
+
 int runSimulate(const SimulateOptions& options) {
   SourceManager sources;
   DiagnosticEngine diags(sources);
@@ -130,7 +157,7 @@ int runSimulate(const SimulateOptions& options) {
     if (const std::optional<std::string> certificate = generatedCertificate(*options.generated)) {
       std::string error;
       if (!modelOptionsOf(*certificate, modelOptions, error)) {
-        std::cerr << "semo-verify: error: --generated: " << error << "\n";
+        std::cerr << errorPrefix() << "--generated: " << error << "\n";
         return kBadInput;
       }
     }
@@ -146,7 +173,7 @@ int runSimulate(const SimulateOptions& options) {
   if (worldPath.empty()) {
     worldPath = defaultWorldPath(options.mission);
     if (!std::filesystem::exists(worldPath)) {
-      std::cerr << "semo-verify: error: no world given and no " << worldPath << " next to the mission; give one with --world (runtime/WORLD.md)\n";
+      std::cerr << errorPrefix() << "no world given and no " << worldPath << " next to the mission; give one with --world (runtime/WORLD.md)\n";
       return kBadInput;
     }
   }
@@ -164,7 +191,7 @@ int runSimulate(const SimulateOptions& options) {
   runtime::SimulationOptions sim;
   auto duration = parseDuration(options.duration);
   if (!duration || *duration <= 0 || *duration > 86400) {
-    std::cerr << "semo-verify: error: --duration '" << options.duration << "': expected a time such as 60s, 500ms or 2min (at most a day)\n";
+    std::cerr << errorPrefix() << "--duration '" << options.duration << "': expected a time such as 60s, 500ms or 2min (at most a day)\n";
     return kBadInput;
   }
   sim.duration = *duration;
@@ -173,7 +200,7 @@ int runSimulate(const SimulateOptions& options) {
   std::string error;
   std::optional<runtime::LossModel> lossModel = runtime::LossModel::parse(options.lossModel, error);
   if (!lossModel) {
-    std::cerr << "semo-verify: error: " << error << "\n";
+    std::cerr << errorPrefix() << error << "\n";
     return kBadInput;
   }
   sim.lossModel = *lossModel;
@@ -181,10 +208,12 @@ int runSimulate(const SimulateOptions& options) {
     const auto at = c.rfind('@');
     std::optional<double> when = at == std::string::npos ? std::nullopt : parseDuration(std::string_view(c).substr(at + 1));
     const std::string who = at == std::string::npos ? c : c.substr(0, at);
-    const bool known = who == "leader" || who.rfind("leader:", 0) == 0 ||
-                       std::any_of(tables.robots.begin(), tables.robots.end(), [&](const runtime::RobotTable& r) { return r.name == who; });
-    if (!when || !known) {
-      std::cerr << "semo-verify: error: --crash '" << c << "': expected ROBOT@TIME (a robot of the mission, or leader, or leader:BLOCK; e.g. ev3_1@5s)\n";
+    if (!when) {
+      std::cerr << errorPrefix() << "--crash '" << c << "': expected ROBOT@TIME (a robot of the mission, or leader, or leader:BLOCK; e.g. ev3_1@5s)\n";
+      return kBadInput;
+    }
+    if (const std::string why = crashTargetProblem(tables, who); !why.empty()) {
+      std::cerr << errorPrefix() << "--crash '" << c << "': " << why << "\n";
       return kBadInput;
     }
     sim.crashes.push_back({who, *when});
@@ -193,7 +222,7 @@ int runSimulate(const SimulateOptions& options) {
   const std::uint64_t lastSeed = options.seedsTo.value_or(options.seed);
   for (const auto& [flag, path] : {std::pair{"--trace", options.trace}, std::pair{"--svg", options.svg}}) {
     if (path && options.seedsTo && path->find(kSeedField) == std::string::npos) {
-      std::cerr << "semo-verify: error: " << flag << " '" << *path << "': with --seeds, one file per run: put " << kSeedField
+      std::cerr << errorPrefix() << flag << " '" << *path << "': with --seeds, one file per run: put " << kSeedField
                 << " in the name (e.g. runs/seed" << kSeedField << ".json)\n";
       return kBadInput;
     }
@@ -212,7 +241,7 @@ int runSimulate(const SimulateOptions& options) {
     DiagnosticEngine dataflowDiags(sources);
     if (!codegen::projectDataflow(*mission, tables, dataflowDiags)) {
       for (const Diagnostic& d : dataflowDiags.diagnostics()) std::cerr << dataflowDiags.format(d);
-      std::cerr << "semo-verify: note: the robots' task graphs have errors (above): simulating without their dataflow\n";
+      std::cerr << notePrefix() << "the robots' task graphs have errors (above): simulating without their dataflow\n";
     }
   }
   if (options.generated) {
@@ -220,14 +249,14 @@ int runSimulate(const SimulateOptions& options) {
     std::string loadError;
     std::optional<runtime::MissionTables> generated = loadGeneratedTables(*options.generated, loadError);
     if (!generated) {
-      std::cerr << "semo-verify: error: --generated: " << loadError << "\n";
+      std::cerr << errorPrefix() << "--generated: " << loadError << "\n";
       return kBadInput;
     }
     if (!options.dataflow) {
       for (runtime::RobotTable& r : generated->robots) r.dataflow = {};
     }
     if (const std::string diff = firstTableDifference(tables, *generated); !diff.empty()) {
-      std::cerr << "semo-verify: error: --generated: the module's tables are not the verified model's projection: " << diff
+      std::cerr << errorPrefix() << "--generated: the module's tables are not the verified model's projection: " << diff
                 << " (they were emitted from other inputs, or the module was not built again since: emit from these inputs, and build)\n";
       return kViolated;
     }
@@ -251,7 +280,7 @@ int runSimulate(const SimulateOptions& options) {
       if (!path) continue;
       const std::string file = perSeed(*path, trace.seed);
       if (!writeAtomically(file, render(trace))) {
-        std::cerr << "semo-verify: error: cannot write '" << file << "'\n";
+        std::cerr << errorPrefix() << "cannot write '" << file << "'\n";
         return false;
       }
     }

@@ -179,7 +179,7 @@ int runTaskGraphs(const SdfOptions& options) {
     std::string error;
     const FileId file = sources.load(*options.graphJson, error);
     if (!error.empty()) {
-      std::cerr << "semo-verify: error: " << error << "\n";
+      std::cerr << errorPrefix() << error << "\n";
       return kBadInput;
     }
     if (auto g = sdf::readTaskGraphJson(sources, file, diags)) graphs.push_back(std::move(*g));
@@ -190,7 +190,7 @@ int runTaskGraphs(const SdfOptions& options) {
   if (options.robot) {
     std::erase_if(graphs, [&](const sdf::TaskGraph& g) { return g.robot != *options.robot; });
     if (graphs.empty()) {
-      std::cerr << "semo-verify: error: no robot named '" << *options.robot << "'\n";
+      std::cerr << errorPrefix() << "no robot named '" << *options.robot << "'\n";
       return kBadInput;
     }
   }
@@ -209,7 +209,7 @@ int runTaskGraphs(const SdfOptions& options) {
     for (const sdf::TaskGraph& g : graphs) {
       const std::string base = (std::filesystem::path(*options.outDir) / g.robot).string();
       if (ec || !writeAtomically(base + ".json", sdf::taskGraphToJson(g)) || !writeAtomically(base + ".dot", sdf::taskGraphToGraphviz(g))) {
-        std::cerr << "semo-verify: error: cannot write the task graphs into '" << *options.outDir << "'\n";
+        std::cerr << errorPrefix() << "cannot write the task graphs into '" << *options.outDir << "'\n";
         return kBadInput;
       }
     }

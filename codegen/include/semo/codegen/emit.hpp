@@ -36,6 +36,11 @@ struct EmitOptions {
   std::uint32_t maxDepth = UINT32_MAX;
   bool symmetry = true, safetyOnly = false, bmcOnly = false;
   unsigned proofTimeoutMs = 10'000;
+  // How the LTL properties were decided (checker::LivenessOptions): a proof on the exact cone is
+  // found again only with the cone's time.
+  bool slicing = true, slicesFirst = false, symbolic = true, walks = true;
+  std::uint64_t sliceStates = 50'000, walkSeed = 1;
+  double symbolicSeconds = 90, coneSeconds = 0;
   std::string toolVersion;                // "0.1.0"
   bool uncertified = false;               // emit although not everything is proven: every file says so
 };

@@ -49,6 +49,12 @@ class DiagnosticEngine {
   std::size_t warnings_ = 0;
 };
 
+// What a diagnostic without a file starts with: the program and its command ("semo-verify check"),
+// so that a message read in a log says which command said it. Set once by the program, before any
+// diagnostic; "semo-verify" until then.
+void setProgramName(std::string name);
+const std::string& programName();
+
 // "did you mean 'X'?" for the closest of `candidates` to `name`, or "" if none is close.
 std::string suggestClosest(const std::string& name, const std::vector<std::string>& candidates);
 

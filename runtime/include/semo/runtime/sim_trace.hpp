@@ -33,7 +33,7 @@ struct TraceEvent {
     Deliver,    // `detail` from `peer` reached robot
     Drop,       // `detail` from `peer` to robot was lost
     Crash,      // robot crash-stopped
-    Mode,       // robot entered mode `detail`
+    Mode,       // robot entered mode `detail` (at 0 s, labelled "starts in MODE": the mode it starts in)
     Role,       // robot's role in a group block is now `detail` ("leader of ReportPapers",
                 // "group (TurtlebotBurger)", "others"; empty: it left the block)
     Fact,       // robot found fact `detail` ("papers: red")
@@ -47,6 +47,7 @@ struct TraceEvent {
   std::string label;
   std::string origin;
   std::string detail;
+  std::string block;  // Role: the group block the role is in ("SlaveTeam.Report.ReportPapers#2")
   std::uint32_t peer = kNoRobot;
   std::vector<TraceChange> changes;  // Step: the IR variables it changed
 };
@@ -109,8 +110,9 @@ struct SimTrace {
 std::string simTraceToJson(const SimTrace& trace);
 
 // The picture: the world (arena, obstacles, places, fact sites) with each robot's trajectory and
-// final pose, and under it one timeline per robot: modes as coloured bands, its roles in group
-// blocks, crashes, and messages sent and lost as ticks. Self-contained SVG 1.1 (no scripts, no
+// final pose, and under it one timeline per robot: modes as coloured bands, its role in each group
+// block on a lane of that block, crashes, and messages sent and lost as ticks. No two labels of the
+// world overlap. Self-contained SVG 1.1 (no scripts, no
 // external references), deterministic.
 std::string renderSvg(const SimTrace& trace);
 

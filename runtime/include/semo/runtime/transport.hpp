@@ -117,6 +117,7 @@ struct TransportCounters {
   std::uint64_t droppedFull = 0;  // reached a receiver whose queue was full
   std::uint64_t discarded = 0;    // from or to a robot not running (crashed, or not of the team), or
                                   // waiting for one when it crashed
+  std::uint64_t refused = 0;      // received but not taken: not a packet of the team's format
 };
 
 class Transport {

@@ -5,7 +5,9 @@
 // of the floor, or one of the simulated task library's sensors). Read from a JSON file
 // ("semo-world", version 1); every error carries the file, line and column of the value at fault.
 #include <cstddef>
+#include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -129,5 +131,33 @@ std::string formatWorldError(const WorldError& e);
 // Reads and checks a world file; nullopt (with every error found) when it is not a valid world.
 std::optional<World> readWorld(const std::string& path, std::vector<WorldError>& errors);
 std::optional<World> parseWorld(std::string_view text, const std::string& path, std::vector<WorldError>& errors);
+
+struct MissionTables;  // tables.hpp
+
+// A starting world for a mission (`semo-verify world`; runtime/WORLD.md, "Starting from `semo-verify
+// world`"): what the simulator's check asks of a world (a start per robot, every place a call names,
+// a source per sensed value read), and a site per fact of the group services' knowledge, laid out
+// from the tables alone, with notes (members starting with '_') saying what to edit. The same tables
+// give the same text, byte for byte.
+struct StartingWorldOptions {
+  enum class Layout { Ring, Grid };
+  Layout layout = Layout::Ring;
+  std::string mission;  // named in the file's first note
+  // What the tables do not keep of the strategy's sensed values: a range domain's bounds (its
+  // constant is the lower one) and the values read from one source for the whole team.
+  std::map<std::string, std::pair<double, double>, std::less<>> ranges;
+  std::set<std::string, std::less<>> teamSources;
+};
+
+// A name the world file cannot hold (empty, starting with '_', or not UTF-8): where the mission
+// gives it ("file:line:col", or "" for a robot's name), and why.
+struct StartingWorldProblem {
+  std::string origin, message;
+};
+
+// The world file's text (JSON, "semo-world" version 1), or "" with `problems` when a name cannot be
+// written.
+std::string writeStartingWorld(const MissionTables& tables, const StartingWorldOptions& options,
+                               std::vector<StartingWorldProblem>& problems);
 
 }  // namespace semo::runtime
