@@ -59,12 +59,12 @@ int run(int argc, char** argv) {
 
   semo::cli::ParseOptions parse;
   CLI::App* parseCmd = app.add_subcommand("parse", "Syntax check: a summary of the mission, or its AST as JSON");
-  parseCmd->add_option("mission", parse.mission, "Mission file (.semo)")->required();
+  parseCmd->add_option("MISSION", parse.mission, "Mission file (.semo)")->required();
   parseCmd->add_flag("--json", parse.json, "Print the whole AST as JSON");
 
   semo::cli::LintOptions lint;
   CLI::App* lintCmd = app.add_subcommand("lint", "Resolve every name against the strategy and the robots; every mistake with its position");
-  lintCmd->add_option("mission", lint.mission, "Mission file (.semo)")->required();
+  lintCmd->add_option("MISSION", lint.mission, "Mission file (.semo)")->required();
   lintCmd->add_option("--strategy,-s", lint.strategy, "Strategy file (.xml)")->required();
   lintCmd->add_option("--robots,-r", lint.robotsDir,
                       "Folder of URDF files; strategy URDF paths are resolved against it (default: the strategy's folder)");
@@ -88,7 +88,7 @@ int run(int argc, char** argv) {
       },
       "KIND[,KIND...]");
   auto addModelOptions = [&lossKinds](CLI::App* cmd, semo::cli::ModelInput& in) {
-    cmd->add_option("input", in.input, "Mission file (.semo, with --strategy) or IR file (.ir)")->required();
+    cmd->add_option("MISSION", in.input, "Mission file (.semo, with --strategy) or IR model (.ir)")->required();
     cmd->add_option("--strategy,-s", in.strategy, "Strategy file (.xml), for a mission");
     cmd->add_option("--robots,-r", in.robotsDir, "Folder of URDF files");
     // --crash N (every team) or N:TEAM (that team), repeatable.
@@ -196,8 +196,8 @@ int run(int argc, char** argv) {
   CLI::App* showCmd = app.add_subcommand("show", "Print a kept counterexample again: for one robot, or with every variable");
   showCmd->footer("Print a counterexample of `check --json` or `check --trace-out` again, as check prints it, "
                                                  "for one robot, or with every variable after each step");
-  showCmd->add_option("trace", show.trace, "A `check --json` / `--trace-out` file")->required();
-  showCmd->add_option("mission", show.model.input, "Mission or IR file (default: the trace file's \"input\")");
+  showCmd->add_option("TRACE", show.trace, "A `check --json` / `--trace-out` file")->required();
+  showCmd->add_option("MISSION", show.model.input, "Mission or IR file (default: the trace file's \"input\")");
   showCmd->add_option("--strategy,-s", show.model.strategy, "Strategy file (default: the trace file's)");
   showCmd->add_option("--robots,-r", show.model.robotsDir, "Folder of URDF files (default: the trace file's)");
   showCmd->add_option("--property,-p", show.property, "Which counterexample (default: the first violated property)");
@@ -213,7 +213,7 @@ int run(int argc, char** argv) {
   graphCmd->footer("Draw the mission for Graphviz (dot -Tsvg): each team's mode machine, each group block "
                                                    "with its arms and candidate robots, or each robot's task graph by scenario with "
                                                    "execution times, rates and proven capacities");
-  graphCmd->add_option("mission", graph.mission, "Mission file (.semo)")->required();
+  graphCmd->add_option("MISSION", graph.mission, "Mission file (.semo)")->required();
   graphCmd->add_option("--strategy,-s", graph.strategy, "Strategy file (.xml)")->required();
   graphCmd->add_option("--robots,-r", graph.robotsDir, "Folder of URDF files");
   auto* drawings = graphCmd->add_option_group("drawing", "What to draw");
@@ -242,7 +242,7 @@ int run(int argc, char** argv) {
   certifyCmd->footer("Check a tree `emit` wrote without trusting it: the hashes of its inputs and files, and "
                                                        "its tables read back and compared with the verified model's projection, made again "
                                                        "from the inputs (exit 0 valid and certified, 1 a difference, 2 bad input, 3 valid but uncertified)");
-  certifyCmd->add_option("dir", certify.dir, "The folder emit wrote")->required();
+  certifyCmd->add_option("DIR", certify.dir, "The folder emit wrote")->required();
   certifyCmd->add_flag("--json", certify.json, "Print the findings as JSON");
   certifyCmd->add_flag("--recheck", certify.recheck, "Also verify the mission again and compare every verdict with the certificate's");
 
@@ -268,7 +268,7 @@ int run(int argc, char** argv) {
   CLI::App* sdfCmd = app.add_subcommand("sdf", "Each robot's dataflow task graph, or one graph: schedule, period, proven buffer bounds");
   sdfCmd->footer("Build each robot's dataflow task graph from a mission, or read one graph; analyse every "
                                                 "scenario: consistency, deadlock freedom, schedule, throughput, proven buffer bounds");
-  sdfCmd->add_option("mission", sdfOptions.mission, "Mission file (.semo), with --strategy: one task graph per robot");
+  sdfCmd->add_option("MISSION", sdfOptions.mission, "Mission file (.semo), with --strategy: one task graph per robot");
   sdfCmd->add_option("--strategy,-s", sdfOptions.strategy, "Strategy file (.xml), for a mission");
   sdfCmd->add_option("--robots,-r", sdfOptions.robotsDir, "Folder of URDF files");
   sdfCmd->add_option("--robot", sdfOptions.robot, "Only this robot's task graph");
@@ -291,7 +291,7 @@ int run(int argc, char** argv) {
   CLI::App* simulateCmd = app.add_subcommand("simulate", "Run the verified mission in a simulated world, with crashes and message loss");
   simulateCmd->footer("Run the verified mission in the simulator (simulated time, injected crashes and "
                                                          "message loss) and summarise what happened (specs/runtime.md)");
-  simulateCmd->add_option("mission", simulate.mission, "Mission file (.semo)")->required();
+  simulateCmd->add_option("MISSION", simulate.mission, "Mission file (.semo)")->required();
   simulateCmd->add_option("--strategy,-s", simulate.strategy, "Strategy file (.xml)")->required();
   simulateCmd->add_option("--robots,-r", simulate.robotsDir, "Folder of URDF files");
   simulateCmd->add_option("--world,-w", simulate.world, "World file (runtime/WORLD.md; default: MISSION.world.json next to the mission)");
@@ -319,8 +319,8 @@ int run(int argc, char** argv) {
   CLI::App* replayCmd = app.add_subcommand("replay", "Make a counterexample happen in the simulated team, step for step");
   replayCmd->footer("Make a counterexample of `check --json` happen in the running team: the simulator takes its "
                                                      "steps one for one and shows the violation at the same step (specs/runtime.md)");
-  replayCmd->add_option("trace", replay.trace, "A `check --json` output, or one counterexample object (specs/trace.md)")->required();
-  replayCmd->add_option("mission", replay.model.input, "Mission file (default: the trace file's \"input\")");
+  replayCmd->add_option("TRACE", replay.trace, "A `check --json` output, or one counterexample object (specs/trace.md)")->required();
+  replayCmd->add_option("MISSION", replay.model.input, "Mission file (default: the trace file's \"input\")");
   replayCmd->add_option("--strategy,-s", replay.model.strategy, "Strategy file (default: the trace file's \"strategy\")");
   replayCmd->add_option("--robots,-r", replay.model.robotsDir, "Folder of URDF files (default: the trace file's \"robots\")");
   replayCmd->add_option("--crash", replay.model.crash, "As given to check (default: as the trace file records)")->check(CLI::Range(0, 100000));
@@ -373,7 +373,7 @@ int run(int argc, char** argv) {
   worldCmd->footer("Write a world file (runtime/WORLD.md) that `simulate` runs the mission in as it is: the robots in a ring or a "
                    "grid, spaced by their footprints, a place per place the mission names, a site per fact of its group services' "
                    "knowledge, a constant per sensed value it reads, and notes saying what to edit");
-  worldCmd->add_option("mission", worldOptions.mission, "Mission file (.semo)")->required();
+  worldCmd->add_option("MISSION", worldOptions.mission, "Mission file (.semo)")->required();
   worldCmd->add_option("--strategy,-s", worldOptions.strategy, "Strategy file (.xml)")->required();
   worldCmd->add_option("--robots,-r", worldOptions.robotsDir, "Folder of URDF files");
   worldCmd->add_option("--output,-o", worldOptions.output, "Write the world to this file (default: print it)");
