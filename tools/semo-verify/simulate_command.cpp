@@ -173,7 +173,9 @@ int runSimulate(const SimulateOptions& options) {
   if (worldPath.empty()) {
     worldPath = defaultWorldPath(options.mission);
     if (!std::filesystem::exists(worldPath)) {
-      std::cerr << errorPrefix() << "no world given and no " << worldPath << " next to the mission; give one with --world (runtime/WORLD.md)\n";
+      std::cerr << errorPrefix() << "no world given and no " << worldPath << " next to the mission; give one with --world (runtime/WORLD.md),\n"
+                << "  or write a starting one to edit: semo-verify world " << options.mission << " --strategy " << options.strategy << " -o "
+                << worldPath << "\n";
       return kBadInput;
     }
   }
