@@ -68,6 +68,17 @@ TEST(SimulateScouting, TheLightWatchStaysWithItsLeaderThroughADarkSpell) {
   EXPECT_NE(r.out.find("every one a step the model allows"), std::string::npos) << r.out;
 }
 
+// leader:BLOCK chooses the block whose leader crashes; the faults line names the robot it hit.
+TEST(SimulateScouting, ACrashOfTheLeaderOfANamedBlock) {
+  const fs::path dir = workDir("scouting_named_leader");
+  CliRun r = verify("simulate " + kScouting + " --crash leader:WatchLight@5s --check-conformance", dir);
+  ASSERT_EQ(r.exit, 0) << r.out << r.err;
+  EXPECT_TRUE(std::regex_search(r.out, std::regex("faults: crash leader:WatchLight at 5 s \\(burger_[01], leader of SlaveTeam\\.Light\\.WatchLight#[0-9]+\\)")))
+      << r.out;
+  EXPECT_TRUE(std::regex_search(r.out, std::regex("leader of SlaveTeam\\.Light\\.WatchLight#[0-9]+: burger_[01] at [0-9.]+ s \\(after burger_[01]\\), [0-9.]+ s after burger_[01] crashed")))
+      << r.out;
+}
+
 // The paper's second experiment: one robot sees the obstacle; knowledge sharing stops them all.
 void swarmStopsBeforeTheDitch(const std::string& mission, const std::string& name) {
   const fs::path dir = workDir(name);
@@ -168,7 +179,15 @@ TEST(SimulateBadInput, PositionedErrorsAndNothingWritten) {
   EXPECT_FALSE(fs::exists(dir / "t.json"));
   CliRun crash = verify("simulate " + kScouting + " --crash nobody@5s --trace '" + (dir / "t.json").string() + "'", dir);
   EXPECT_EQ(crash.exit, 2);
-  EXPECT_NE(crash.err.find("--crash 'nobody@5s'"), std::string::npos) << crash.err;
+  EXPECT_NE(crash.err.find("--crash 'nobody@5s': the mission has no robot 'nobody' (its robots: irobot, burger_0, burger_1, ev3_0, ev3_1; "
+                           "or leader, leader:BLOCK)"),
+            std::string::npos)
+      << crash.err;
+  CliRun block = verify("simulate " + kScouting + " --crash leader:Lamp@5s --trace '" + (dir / "t.json").string() + "'", dir);
+  EXPECT_EQ(block.exit, 2);
+  EXPECT_NE(block.err.find("no leader block is named like 'Lamp' (its leader blocks: SlaveTeam.Report.ReportPapers#2, SlaveTeam.Light.WatchLight#3)"),
+            std::string::npos)
+      << block.err;
   EXPECT_FALSE(fs::exists(dir / "t.json"));
   // A world without the places the mission drives to is refused before anything runs.
   {
