@@ -190,8 +190,16 @@ std::string statusLine(const MissionTables& mission, const RobotNode& node, Id s
     ++peers;
     if (node.alive(r)) ++alive;
   }
+  // Refused: not of the team's format (the transport), or not what the mission's tables allow (the
+  // node), by reason.
+  const PacketRefusals& r = node.refusals();
+  std::string why;
+  for (std::size_t k = 1; k < kPacketRefusals; ++k) {
+    if (r.count[k] != 0) why += (why.empty() ? "" : ", ") + std::to_string(r.count[k]) + " " + std::string(packetRefusalName(static_cast<PacketRefusal>(k)));
+  }
+  if (c.refused != 0) why += (why.empty() ? "" : ", ") + std::to_string(c.refused) + " malformed";
   return out + "; peers alive " + std::to_string(alive) + " of " + std::to_string(peers) + "; packets " + std::to_string(c.sent) + " sent, " +
-         std::to_string(c.delivered) + " received, " + std::to_string(c.refused) + " refused";
+         std::to_string(c.delivered) + " received, " + std::to_string(c.refused + r.total()) + " refused" + (why.empty() ? "" : " (" + why + ")");
 }
 
 }  // namespace

@@ -31,5 +31,6 @@ Id RobotNode::mode(Id robot) const { return team_->robot(robot).mode; }
 Pose RobotNode::pose(Id robot) const { return team_->pose(robot); }
 bool RobotNode::alive(Id robot) const { return team_->robot(robot).alive; }
 bool RobotNode::leads(Id robot, Id leaderBlock) const { return team_->robot(robot).leads[leaderBlock] != 0; }
+const PacketRefusals& RobotNode::refusals() const { return team_->refusals(); }
 
 }  // namespace semo::runtime

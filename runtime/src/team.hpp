@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "semo/runtime/knowledge.hpp"
+#include "semo/runtime/packet_check.hpp"
 #include "semo/runtime/random.hpp"
 #include "semo/runtime/replay.hpp"
 #include "semo/runtime/simulator.hpp"
@@ -108,6 +109,8 @@ class Team {
   [[nodiscard]] Micros time() const { return now_; }
   [[nodiscard]] const RobotRun& robot(Id r) const { return robots_[r]; }
   [[nodiscard]] const Pose& pose(Id r) const { return poses_[r]; }
+  // A networked robot: the packets it refused, by reason (packet_check.hpp).
+  [[nodiscard]] const PacketRefusals& refusals() const { return refusals_; }
   // A networked robot's run is over when it crashes too: a crash stops its program.
   [[nodiscard]] bool over() const {
     return stopped_ || (goalSeen_ && options_.stopAtGoal) || (node_ != nullptr && !robots_[node_->self].alive);
@@ -245,6 +248,7 @@ class Team {
   // Networked robot (team_node.cpp).
   const NodeLink* node_ = nullptr;
   std::vector<Micros> lastHeard_;              // per robot: when its last packet came
+  PacketRefusals refusals_;
   std::vector<std::uint8_t> heard_, heardPreferred_;  // per leader block, since the last period: a heartbeat, one of a preferred leader
   std::uint64_t sequence_ = 0;
   std::vector<std::uint32_t> everyone_;  // every robot of the mission, for a multicast to all

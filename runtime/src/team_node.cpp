@@ -65,7 +65,12 @@ void Team::pollNetwork() {
 
 void Team::onPacket(const Packet& p) {
   const Id self = node_->self;
-  if (p.sender >= robots_.size() || p.sender == self) return;  // not a peer of this mission
+  // Only what the mission's tables allow reaches the robot's state; a refused packet does not even
+  // count as its sender speaking.
+  if (const PacketRefusal why = checkPacket(t_, self, p); why != PacketRefusal::None) {
+    refusals_.add(why);
+    return;
+  }
   RobotRun& me = robots_[self];
   RobotRun& peer = robots_[p.sender];
   lastHeard_[p.sender] = now_;

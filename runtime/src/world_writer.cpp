@@ -58,7 +58,7 @@ std::string num(double x, int decimals = 3) {
 
 std::string point(Vec2 p) { return "[" + num(p.x) + ", " + num(p.y) + "]"; }
 
-std::string quoted(std::string_view s) { return detail::jsonString(s); }
+std::string jsonQuoted(std::string_view s) { return detail::jsonString(s); }
 
 std::string joined(const std::vector<std::string>& items, std::string_view separator = ", ") {
   std::string out;
@@ -249,7 +249,7 @@ std::pair<std::string, std::string> startingValue(const SensedValueTable& v, con
       std::vector<std::string> symbols;
       for (const std::string& s : v.symbols) symbols.push_back(s);
       if (symbols.empty()) return {"\"none\"", sources};
-      return {quoted(v.symbols.front()), "one of " + joined(symbols) + "; " + sources};
+      return {jsonQuoted(v.symbols.front()), "one of " + joined(symbols) + "; " + sources};
     }
     case SensedValueTable::Domain::Range: {
       const auto it = options.ranges.find(v.name);
@@ -272,7 +272,7 @@ std::string writeStartingWorld(const MissionTables& t, const StartingWorldOption
   const std::size_t before = problems.size();
   for (std::size_t p = 0; p < placeNames.size(); ++p) {
     if (std::string why = unwritable(placeNames[p]); !why.empty()) {
-      problems.push_back({placeOrigins[p]->origin, placeOrigins[p]->service + "(" + quoted(placeNames[p]) +
+      problems.push_back({placeOrigins[p]->origin, placeOrigins[p]->service + "(" + jsonQuoted(placeNames[p]) +
                                                        "): no world file can hold this place, as " + why + "; name it otherwise"});
     }
   }
@@ -322,44 +322,44 @@ std::string writeStartingWorld(const MissionTables& t, const StartingWorldOption
 
   std::string o = "{\n";
   auto member = [&](std::string_view key, const std::string& value, bool last = false) {
-    o += "  " + quoted(key) + ": " + value + (last ? "\n" : ",\n");
+    o += "  " + jsonQuoted(key) + ": " + value + (last ? "\n" : ",\n");
   };
-  member("_", quoted("A starting world for " + (options.mission.empty() ? std::string("the mission") : options.mission) +
+  member("_", jsonQuoted("A starting world for " + (options.mission.empty() ? std::string("the mission") : options.mission) +
                      ", written by semo-verify world: everything the simulator needs to run the mission, laid out without knowing "
                      "the real site. Edit it to stand for the site (runtime/WORLD.md); members whose names start with '_' are notes "
                      "the reader ignores."));
   member("format", "\"semo-world\"");
   member("version", "1");
-  member("_arena", quoted("The floor around everything below, with a margin. It frames the pictures and keeps in the behaviours "
+  member("_arena", jsonQuoted("The floor around everything below, with a margin. It frames the pictures and keeps in the behaviours "
                           "that aim at points of their own (runAway, wander, scatter); it holds no robot back: walls are obstacles."));
   member("arena", "{\"from\": [0, 0], \"to\": " + point(top) + "}");
 
-  member("_places", quoted(placeNames.empty()
+  member("_places", jsonQuoted(placeNames.empty()
                                ? "The mission names no place. Add one per place a call names, as \"name\": [x, y]."
                                : std::string(grid ? "In a column behind the robots" : "On a circle around the robots") +
                                      ", one per place the mission names (the first argument of a call, as a string): the simulator "
                                      "drives move and walk there; a service of your own reads the name. Put each where it is on the site."));
   std::string places = "{";
-  for (std::size_t p = 0; p < placeNames.size(); ++p) places += (p == 0 ? "\n    " : ",\n    ") + quoted(placeNames[p]) + ": " + point(moved(lay.places[p]));
+  for (std::size_t p = 0; p < placeNames.size(); ++p) places += (p == 0 ? "\n    " : ",\n    ") + jsonQuoted(placeNames[p]) + ": " + point(moved(lay.places[p]));
   member("places", places + (placeNames.empty() ? "}" : "\n  }"));
 
-  member("_robots", quoted(lay.robotsNote + " (each robot's footprint from its URDF: its wheel separation plus a wheel's "
+  member("_robots", jsonQuoted(lay.robotsNote + " (each robot's footprint from its URDF: its wheel separation plus a wheel's "
                                             "diameter, or 0.3 m for a legged robot; a clearance as wide as the wider of two "
                                             "neighbours between them). \"heading\": degrees, counter-clockwise from +x."));
   std::string robots = "{";
   for (std::size_t i = 0; i < t.robots.size(); ++i) {
     double degrees = lay.headings[i] * 180 / std::numbers::pi;
     if (degrees > 180) degrees -= 360;
-    robots += (i == 0 ? "\n    " : ",\n    ") + quoted(t.robots[i].name) + ": {\"at\": " + point(moved(lay.robots[i])) +
+    robots += (i == 0 ? "\n    " : ",\n    ") + jsonQuoted(t.robots[i].name) + ": {\"at\": " + point(moved(lay.robots[i])) +
               ", \"heading\": " + num(std::round(degrees * 100) / 100, 2) + "}";
   }
   member("robots", robots + (t.robots.empty() ? "}" : "\n  }"));
 
-  member("_obstacles", quoted("None yet. Add walls, ditches and rocks: {\"name\": \"wall\", \"polygon\": [[x, y], ...]} or {\"name\": "
+  member("_obstacles", jsonQuoted("None yet. Add walls, ditches and rocks: {\"name\": \"wall\", \"polygon\": [[x, y], ...]} or {\"name\": "
                               "\"rock\", \"circle\": {\"at\": [x, y], \"radius\": r}}."));
   member("obstacles", "[]");
 
-  member("_facts", quoted(lay.facts.empty()
+  member("_facts", jsonQuoted(lay.facts.empty()
                               ? "The mission's group services share no knowledge, so there is nothing to find."
                               : fmt::format("One site per fact of each group service's knowledge, {} m ahead of {} of the team that "
                                             "shares it (further out when the team has more facts than {}): a robot working in the "
@@ -369,13 +369,13 @@ std::string writeStartingWorld(const MissionTables& t, const StartingWorldOption
   std::string facts = "[";
   for (std::size_t f = 0; f < lay.facts.size(); ++f) {
     const Site& s = lay.facts[f];
-    facts += (f == 0 ? "\n    " : ",\n    ") + std::string("{\"knowledge\": ") + quoted(s.knowledge) + ", \"fact\": " + quoted(s.fact) +
+    facts += (f == 0 ? "\n    " : ",\n    ") + std::string("{\"knowledge\": ") + jsonQuoted(s.knowledge) + ", \"fact\": " + jsonQuoted(s.fact) +
              ", \"at\": " + point(moved(s.at)) + ", \"radius\": " + num(kFactRadius) + "}";
   }
   member("facts", facts + (lay.facts.empty() ? "]" : "\n  ]"));
 
   const bool readsAny = std::find(read.begin(), read.end(), true) != read.end();
-  member("_values", quoted(readsAny ? "A constant for each sensed value the mission reads: false, the first of its symbols, the lowest of "
+  member("_values", jsonQuoted(readsAny ? "A constant for each sensed value the mission reads: false, the first of its symbols, the lowest of "
                                       "its range, or a number above every threshold it is compared with. Give each the source it has on "
                                       "the site (the note beside it says what it may be)."
                                     : "The mission reads no sensed value."));
@@ -384,7 +384,7 @@ std::string writeStartingWorld(const MissionTables& t, const StartingWorldOption
   for (std::size_t s = 0; s < t.sensed.size(); ++s) {
     if (!read[s]) continue;
     const auto [value, note] = startingValue(t.sensed[s], options);
-    values += (first ? "\n    " : ",\n    ") + quoted(t.sensed[s].name) + ": {\"constant\": " + value + ", \"_\": " + quoted(note) + "}";
+    values += (first ? "\n    " : ",\n    ") + jsonQuoted(t.sensed[s].name) + ": {\"constant\": " + value + ", \"_\": " + jsonQuoted(note) + "}";
     first = false;
   }
   member("values", values + (first ? "}" : "\n  }"));
@@ -395,7 +395,7 @@ std::string writeStartingWorld(const MissionTables& t, const StartingWorldOption
     for (const ModeTable& m : team.modes) names.push_back(m.name);
     modes.push_back(team.name + " (" + joined(names) + ")");
   }
-  member("_goal", quoted("No goal: a run ends at --duration, or once every live robot has finished its plans. To end it when a team "
+  member("_goal", jsonQuoted("No goal: a run ends at --duration, or once every live robot has finished its plans. To end it when a team "
                          "reaches a mode, add \"goal\": [{\"team\": T, \"mode\": M, \"done\": [plans]}]. The teams and their modes: " +
                          joined(modes, "; ") + "."),
          true);

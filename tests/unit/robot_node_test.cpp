@@ -8,6 +8,11 @@
 
 #include "semo/runtime/robot_node.hpp"
 
+#include <array>
+#include <bit>
+#include <functional>
+#include <limits>
+
 namespace semo {
 namespace {
 
@@ -21,8 +26,12 @@ struct Team {
 // Runs every robot of an example as a node, to `seconds` (or until every node sees the goal).
 // `startAt` (per robot, microseconds; default all 0): when each program starts, as processes launched
 // one after the other do; a node's own clock starts then.
+// `intruder`, when given, is called every millisecond with the time and the transport, before the
+// nodes advance: it may put packets of its own on the network.
+using Intruder = std::function<void(std::int64_t micros, runtime::InProcessTransport&)>;
+
 Team runNodes(const std::string& dir, const std::string& stem, runtime::NodeOptions options, double seconds, std::uint64_t seed = 1,
-              const std::string& strategy = "strategy.xml", std::vector<std::int64_t> startAt = {}) {
+              const std::string& strategy = "strategy.xml", std::vector<std::int64_t> startAt = {}, const Intruder& intruder = {}) {
   Team t;
   t.mission = test::loadExample(dir, stem, strategy);
   EXPECT_TRUE(t.mission && t.mission->world);
@@ -42,6 +51,7 @@ Team runNodes(const std::string& dir, const std::string& stem, runtime::NodeOpti
   std::vector<bool> running(t.nodes.size(), true);
   const auto end = static_cast<std::int64_t>(seconds * 1e6);
   for (std::int64_t micros = 0; micros <= end + startAt.back(); micros += 1000) {
+    if (intruder) intruder(micros, *t.transport);
     bool any = false;
     for (std::size_t i = 0; i < t.nodes.size(); ++i) {
       if (micros == startAt[i]) t.nodes[i]->start();
@@ -51,6 +61,10 @@ Team runNodes(const std::string& dir, const std::string& stem, runtime::NodeOpti
     if (!any) break;
   }
   for (auto& n : t.nodes) t.traces.push_back(n->finish());
+  // The team's own packets are all what the mission's tables allow.
+  if (!intruder) {
+    for (const auto& n : t.nodes) EXPECT_EQ(n->refusals().total(), 0u) << tables.robots[n->self()].name;
+  }
   return t;
 }
 
@@ -91,6 +105,49 @@ TEST(RobotNode, TheSwarmStopsBeforeTheDitchOverTheNetwork) {
       EXPECT_GT(eastmost, 2.5) << "it did march";
     }
     EXPECT_GT(t.transport->counters().delivered, 100u);
+  }
+}
+
+// Packets well-formed on the wire but not what the mission's tables allow, sent to every robot at
+// 3 s by an intruder posing as legged_0: each is refused and counted by reason, and the run is the
+// run without them (the same mode changes at the same times). A forged packet within the tables'
+// ranges is a matter for authentication, not for these checks.
+TEST(RobotNode, PacketsOutsideTheMissionsTablesAreRefusedAndChangeNothing) {
+  Team quiet = runNodes("swarm", "swarm3", {}, 40, 2);
+  const runtime::MissionTables& tables = quiet.mission->tables;
+  using K = runtime::Packet::Kind;
+  const std::vector<std::pair<runtime::Packet, runtime::PacketRefusal>> forged = {
+      {{.kind = K::KnowledgeFact, .sender = 0, .index = 0, .value = 99, .aux = 0, .word = 7}, runtime::PacketRefusal::Value},  // no fact 99
+      {{.kind = K::KnowledgeFact, .sender = 0, .index = 42, .value = 0}, runtime::PacketRefusal::Index},
+      {{.kind = K::Status, .sender = 0, .index = 0, .value = 100000, .aux = 0}, runtime::PacketRefusal::Value},  // pc past the plan
+      {{.kind = K::Status, .sender = 0, .index = 0, .value = 0, .aux = 7}, runtime::PacketRefusal::Value},       // no mode 7
+      {{.kind = K::Pose, .sender = 0, .word = std::bit_cast<std::uint64_t>(std::numeric_limits<double>::quiet_NaN())},
+       runtime::PacketRefusal::Pose},
+      {{.kind = K::Heartbeat, .sender = 0, .index = 5}, runtime::PacketRefusal::Index},  // swarm3 has no leader block
+      {{.kind = K::Event, .sender = 0, .index = 30}, runtime::PacketRefusal::Index},
+      {{.kind = K::Publish, .sender = 0, .index = 30, .value = 1}, runtime::PacketRefusal::Index},
+      {{.kind = K::KnowledgeDigest, .sender = 0}, runtime::PacketRefusal::Kind},
+      // Naming the receiver itself as its sender (filled in per receiver below).
+      {{.kind = K::Status, .sender = runtime::kNone, .index = 0}, runtime::PacketRefusal::Sender},
+  };
+  Team attacked = runNodes("swarm", "swarm3", {}, 40, 2, "strategy.xml", {}, [&](std::int64_t micros, runtime::InProcessTransport& net) {
+    if (micros != 3'000'000) return;
+    for (const auto& [p, why] : forged) {
+      for (std::uint32_t to = 1; to < net.robots(); ++to) {
+        runtime::Packet copy = p;
+        if (copy.sender == runtime::kNone) copy.sender = to;
+        net.send(to, copy);
+      }
+    }
+  });
+  for (std::size_t i = 1; i < attacked.nodes.size(); ++i) {
+    SCOPED_TRACE(tables.robots[i].name);
+    const runtime::PacketRefusals& r = attacked.nodes[i]->refusals();
+    std::array<std::uint64_t, runtime::kPacketRefusals> expected{};
+    for (const auto& [p, why] : forged) ++expected[static_cast<std::size_t>(why)];
+    EXPECT_EQ(r.count, expected);
+    EXPECT_EQ(attacked.traces[i].summary.modeChanges, quiet.traces[i].summary.modeChanges);
+    EXPECT_EQ(attacked.traces[i].summary.completedAt, quiet.traces[i].summary.completedAt);
   }
 }
 

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <memory>
 
+#include "semo/runtime/packet_check.hpp"
 #include "semo/runtime/sim_trace.hpp"
 #include "semo/runtime/simulator.hpp"
 #include "semo/runtime/tables.hpp"
@@ -56,6 +57,8 @@ class RobotNode {
   [[nodiscard]] Pose pose(Id robot) const;
   [[nodiscard]] bool alive(Id robot) const;
   [[nodiscard]] bool leads(Id robot, Id leaderBlock) const;
+  // The packets it refused, by reason: well-formed, but not what the mission's tables allow.
+  [[nodiscard]] const PacketRefusals& refusals() const;
 
  private:
   Id self_;
