@@ -334,16 +334,6 @@ void countingVerdicts(Report& out, const ir::Model& model, bool safetyOnly) {
   out.exitCode = countingDecides(c, safetyOnly) && (!safetyOnly || model.properties.empty()) ? 0 : 3;
 }
 
-// 2000000 as "2,000,000".
-std::string countText(std::uint64_t n) {
-  std::string digits = std::to_string(n), out;
-  for (std::size_t i = 0; i < digits.size(); ++i) {
-    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
-    out += digits[i];
-  }
-  return out;
-}
-
 void runExplicit(Report& out, const ir::Model& model, const model::MissionModel* mission, const VerifyOptions& options,
                  const SourceManager& sources) {
   const bool automatic = options.engine == Engine::Auto;
@@ -384,15 +374,15 @@ void runExplicit(Report& out, const ir::Model& model, const model::MissionModel*
   if (automatic) {
     const bool found = r.rangeError.has_value() || anyViolated(r.properties);
     if (!r.complete && !found && !r.depthBounded) {
-      out.engineReason = counted + "the explicit search did not cover the state space within its budget of " + countText(limits.maxStates) +
+      out.engineReason = counted + "the explicit search did not cover the state space within its budget of " + withThousands(limits.maxStates) +
                          " states, so smt" + (ltl ? "; the LTL properties on slices of the model (cone of influence, refined by counterexamples), " +
                                                         std::string("never on the whole product")
                                                   : std::string());
       runSmt(out, model, mission, options, sources);
       return;
     }
-    out.engineReason = counted + (found ? "the explicit search found a violation within its budget of " + countText(kAutoStateBudget) + " states"
-                                        : "the state space fits the explicit engine's budget of " + countText(kAutoStateBudget) + " states");
+    out.engineReason = counted + (found ? "the explicit search found a violation within its budget of " + withThousands(kAutoStateBudget) + " states"
+                                        : "the state space fits the explicit engine's budget of " + withThousands(kAutoStateBudget) + " states");
     if (ltl && options.liveness.slicing) out.engineReason += "; the LTL properties on slices of the model first, on the whole product where no slice decides";
     limits.maxStates = options.limits.maxStates;  // the liveness products get the usual limit
   }
@@ -433,6 +423,15 @@ std::string scenarioDefect(const sdf::ScenarioAnalysis& a) {
 }
 
 }  // namespace
+
+std::string withThousands(std::uint64_t n) {
+  std::string digits = std::to_string(n), out;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
 
 const char* const kTaskGraphAssumptions =
     "execution times are the strategy's worst cases (generated control and communication tasks: 1 ms nominal); "

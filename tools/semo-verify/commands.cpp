@@ -29,15 +29,6 @@ void printSummaryLine(const DiagnosticEngine& diags) {
 
 }  // namespace
 
-std::string withThousands(std::uint64_t n) {
-  std::string digits = std::to_string(n), out;
-  for (std::size_t i = 0; i < digits.size(); ++i) {
-    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
-    out += digits[i];
-  }
-  return out;
-}
-
 void addModelInput(nlohmann::json& root, const ModelInput& in) {
   if (in.strategy) root["strategy"] = *in.strategy;
   if (in.robotsDir) root["robots"] = *in.robotsDir;

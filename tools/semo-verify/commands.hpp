@@ -217,8 +217,8 @@ std::string reportText(const checker::Report& report, const ir::Model& model, co
 nlohmann::json reportJson(const checker::Report& report, const ir::Model& model, const ModelInput& in);
 // A duration for people, three significant digits: "2.1 ms", "12.3 s", "2.08 min".
 std::string durationText(double seconds);
-// 1234567 as "1,234,567" (no locale: the machine may have none but C).
-std::string withThousands(std::uint64_t n);
+// 1234567 as "1,234,567" (the checker's, which says its reasons so).
+using checker::withThousands;
 // For CI (check_formats.cpp): JUnit XML (a test case per property), SARIF 2.1.0 of the verdicts
 // (violations and unknowns with their places, a counterexample as a code flow), and of diagnostics.
 std::string junitXml(const checker::Report& report, const ir::Model& model, const std::string& input);

@@ -54,6 +54,9 @@ struct VerifyOptions {
 // this many states; past it, the smt engine's symbolic proofs do not depend on the number of states.
 inline constexpr std::uint64_t kAutoStateBudget = 2'000'000;
 
+// A count as people read it: 2000000 as "2,000,000" (the engine's reasons, the CLI's progress).
+std::string withThousands(std::uint64_t n);
+
 // How a verdict was reached.
 enum class ProofKind : std::uint8_t {
   None,            // not proven (violated, or unknown)
